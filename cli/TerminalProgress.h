@@ -1,0 +1,40 @@
+// Progress on a terminal: "[stage] 42% 3.1 s" redrawn in place on a TTY, one line per finished
+// stage otherwise; silent with --quiet. Ctrl-C sets a flag that library code polls, so a run stops
+// at a safe point and writes no partial output.
+#pragma once
+
+#include "io/Progress.h"
+
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <string>
+
+namespace jawmesh {
+
+class TerminalProgress : public Progress {
+public:
+    explicit TerminalProgress(bool quiet);
+    void begin(const std::string& stage) override;
+    void update(double fraction) override;
+    void end() override;
+    bool cancelled() const override;
+
+    /// Installs a SIGINT handler that makes cancelled() true (the second Ctrl-C kills at once).
+    static void installInterruptHandler();
+
+private:
+    using Clock = std::chrono::steady_clock;
+    void draw(double fraction, bool final);
+
+    bool quiet_;
+    bool tty_;
+    std::mutex mutex_;
+    std::string stage_;
+    Clock::time_point stageStart_;
+    Clock::time_point lastDraw_;
+    int lastPercent_ = -1;
+    int depth_ = 0;
+};
+
+}  // namespace jawmesh

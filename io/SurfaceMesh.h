@@ -1,0 +1,44 @@
+// Plain triangle-surface data shared by every stage: vertices in millimetres, triangles as
+// vertex-index triples. A SurfaceMesh may be a "triangle soup": no closedness, manifoldness or
+// orientation is assumed by the type; stages that need those check them.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace jawmesh {
+
+using Vec3 = Eigen::Vector3d;
+using Tri = std::array<std::int32_t, 3>;
+
+struct SurfaceMesh {
+    std::vector<Vec3> vertices;   ///< positions, mm
+    std::vector<Tri> triangles;   ///< indices into vertices
+};
+
+/// Axis-aligned bounding box, mm. Empty when min > max.
+struct BBox {
+    Vec3 min = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 max = Vec3::Constant(-std::numeric_limits<double>::infinity());
+    bool empty() const { return (min.array() > max.array()).any(); }
+    void extend(const Vec3& p) { min = min.cwiseMin(p); max = max.cwiseMax(p); }
+    void extend(const BBox& b) { if (!b.empty()) { extend(b.min); extend(b.max); } }
+    Vec3 size() const { return empty() ? Vec3::Zero() : Vec3(max - min); }
+};
+
+/// Bounding box of the vertices referenced by at least one triangle (unused vertices ignored).
+BBox boundingBox(const SurfaceMesh& mesh);
+
+/// Signed volume (mm^3) enclosed by the triangles, by the divergence theorem; positive for a
+/// closed, outward-oriented surface. Meaningless for open or inconsistently oriented meshes.
+double signedVolume(const SurfaceMesh& mesh);
+
+/// Appends b to a (indices of b shifted).
+void append(SurfaceMesh& a, const SurfaceMesh& b);
+
+}  // namespace jawmesh

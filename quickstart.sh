@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# jawmesh quick start. Run as root on Debian 12 (or with sudo available):
+#   bash quickstart.sh demo   install dependencies, build, mesh the synthetic jaw phantom -> out/demo
+#   bash quickstart.sh test   install dependencies, build, run every test (quick set, then slow set)
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(cmake make g++ pkg-config
+  libopenvdb-dev libboost-iostreams-dev libboost-system-dev libtbb-dev libembree-dev libtet1.5-dev
+  libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev)
+
+install_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return
+  echo "Installing: ${missing[*]}"
+  local sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+  cmake --build build -j "$(nproc)"
+}
+
+case "${1:-}" in
+  demo)
+    install_packages
+    build
+    ./build/cli/jawmesh demo -o out/demo
+    echo "Outputs in out/demo"
+    ;;
+  test)
+    install_packages
+    build
+    ctest --test-dir build -L quick --output-on-failure -j "$(nproc)"
+    ctest --test-dir build -L slow --output-on-failure
+    ;;
+  *)
+    echo "usage: bash quickstart.sh demo|test" >&2
+    exit 2
+    ;;
+esac
