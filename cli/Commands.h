@@ -1,10 +1,15 @@
-// Each subcommand lives in its own cli/Cmd*.cpp and registers itself on the app here. The CLI only
-// parses options and wires library stages; all work happens in the stage libraries.
+// Each subcommand lives in its own cli/Cmd*.cpp and registers itself with JAWMESH_COMMAND, so
+// adding a command never touches another file. The CLI only parses options and wires library
+// stages; all work happens in the stage libraries.
 #pragma once
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace jawmesh {
+
+class Progress;
 
 /// Options every subcommand shares.
 struct GlobalOptions {
@@ -16,7 +21,20 @@ struct GlobalOptions {
 constexpr int kExitFailure = 1;
 constexpr int kExitCancelled = 130;
 
-void addPhantomCommand(CLI::App& app, GlobalOptions& global);
-void addLevelsetCommand(CLI::App& app, GlobalOptions& global);
+using CommandAdder = void (*)(CLI::App& app, GlobalOptions& global);
+
+/// Registers a subcommand; `order` sorts the --help listing (pipeline order).
+struct CommandRegistration {
+    CommandRegistration(int order, CommandAdder add);
+};
+
+/// Adds every registered subcommand to app.
+void addRegisteredCommands(CLI::App& app, GlobalOptions& global);
+
+/// The terminal progress reporter of this process (quiet or not per the global options).
+Progress& terminalProgress(const GlobalOptions& global);
 
 }  // namespace jawmesh
+
+#define JAWMESH_COMMAND(order, fn) \
+    static const ::jawmesh::CommandRegistration jawmeshCommandRegistration_##fn(order, fn)

@@ -6,12 +6,38 @@
 #include <openvdb/openvdb.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #ifndef JAWMESH_VERSION
 #define JAWMESH_VERSION "unknown"
 #endif
+
+namespace jawmesh {
+namespace {
+std::vector<std::pair<int, CommandAdder>>& registry() {
+    static std::vector<std::pair<int, CommandAdder>> commands;
+    return commands;
+}
+}  // namespace
+
+CommandRegistration::CommandRegistration(int order, CommandAdder add) { registry().emplace_back(order, add); }
+
+void addRegisteredCommands(CLI::App& app, GlobalOptions& global) {
+    auto commands = registry();
+    std::stable_sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& entry : commands) entry.second(app, global);
+}
+
+Progress& terminalProgress(const GlobalOptions& global) {
+    static TerminalProgress loud(false);
+    static TerminalProgress quiet(true);
+    return global.quiet ? static_cast<Progress&>(quiet) : static_cast<Progress&>(loud);
+}
+
+}  // namespace jawmesh
 
 int main(int argc, char** argv) {
     using namespace jawmesh;
@@ -19,25 +45,29 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string("jawmesh ") + JAWMESH_VERSION);
     app.require_subcommand(1);
     GlobalOptions global;
-    app.add_flag("-q,--quiet", global.quiet, "No progress output")->configurable();
-    app.add_option("--threads", global.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-    addPhantomCommand(app, global);
-    addLevelsetCommand(app, global);
-
+    app.add_flag("-q,--quiet", global.quiet, "No progress output");
+    // Results never depend on the thread count; this only bounds the cores used.
     std::unique_ptr<tbb::global_control> threadLimit;
-    app.parse_complete_callback([&] {
-        if (global.threads > 0)
-            threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                                static_cast<std::size_t>(global.threads));
-    });
+    app.add_option_function<int>(
+           "--threads",
+           [&](int n) {
+               global.threads = n;
+               if (n > 0)
+                   threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                                       static_cast<std::size_t>(n));
+           },
+           "Worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber);
+    addRegisteredCommands(app, global);
+
+    app.preparse_callback([](std::size_t) { openvdb::initialize(); });
     try {
-        openvdb::initialize();
         TerminalProgress::installInterruptHandler();
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const Cancelled& e) {
-        std::fprintf(stderr, "jawmesh: %s; no output written\n", e.what());
+        std::fprintf(stderr, "\njawmesh: %s; no output written\n", e.what());
         return kExitCancelled;
     } catch (const Error& e) {
         std::fprintf(stderr, "jawmesh: error: %s\n", e.what());

@@ -1,0 +1,27 @@
+// The multi-material interface surface: a piecewise-linear complex in which every interface between
+// two regions appears once and is shared by both. Output of filters/ (extraction + simplification),
+// input of tet/ (TetGen). Labels as in io/Labels.h; kOutsideLabel (0) is the outside.
+#pragma once
+
+#include "io/Labels.h"
+#include "io/SurfaceMesh.h"
+
+#include <array>
+#include <vector>
+
+namespace jawmesh {
+
+struct RegionSeed {
+    Vec3 point;    ///< a point strictly inside one connected component of the region, mm
+    Label label;   ///< the region's label (never kOutsideLabel)
+};
+
+struct InterfaceComplex {
+    SurfaceMesh surface;  ///< all interface triangles, vertices shared between interfaces
+    /// Per triangle, the two labels it separates: the triangle's normal (right-hand rule) points
+    /// into sides[t][0] and out of sides[t][1]. sides[t][0] != sides[t][1].
+    std::vector<std::array<Label, 2>> sides;
+    std::vector<RegionSeed> seeds;  ///< one per connected component of every region
+};
+
+}  // namespace jawmesh
