@@ -1,13 +1,68 @@
-// PLACEHOLDER until the phantom stage lands; replaced by its real command.
+// jawmesh phantom <dir>: writes the synthetic jaw phantom as a case folder (see levelset/Phantom.h).
 #include "cli/Commands.h"
 #include "io/Error.h"
+#include "io/Labels.h"
+#include "levelset/Phantom.h"
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace jawmesh {
 namespace {
-void addPhantomCommand(CLI::App& app, GlobalOptions&) {
-    auto* cmd = app.add_subcommand("phantom", "(under construction)");
-    cmd->callback([] { throw Error("jawmesh phantom is not implemented yet"); });
+
+struct PhantomArgs {
+    std::string dir;
+    int teeth = 14;
+    std::uint32_t seed = 1;
+    std::string jaw = "mandible";
+    double trianglesScale = 1.0;
+};
+
+void runPhantom(const PhantomArgs& args, const GlobalOptions& global) {
+    std::vector<Jaw> jaws;
+    if (args.jaw == "both") jaws = {Jaw::Mandible, Jaw::Maxilla};
+    else jaws = {jawFromName(args.jaw)};
+    Progress& progress = terminalProgress(global);
+    std::vector<PhantomJaw> made;
+    for (Jaw jaw : jaws) {
+        PhantomOptions options;
+        options.jaw = jaw;
+        options.teeth = args.teeth;
+        options.seed = args.seed;
+        options.trianglesScale = args.trianglesScale;
+        made.push_back(makePhantom(options, progress));
+    }
+    writePhantomCase(made, args.dir);
+    if (global.quiet) return;
+    for (const PhantomJaw& jaw : made) {
+        std::size_t teethTriangles = 0;
+        for (const auto& [unn, mesh] : jaw.teeth) teethTriangles += mesh.triangles.size();
+        std::printf("%s: bone %zu triangles, %zu teeth (%zu triangles), voxel %.3f mm -> %s/input/%s\n",
+                    jawName(jaw.jaw).c_str(), jaw.bone.triangles.size(), jaw.teeth.size(), teethTriangles,
+                    jaw.voxelSizeMm, args.dir.c_str(), jawName(jaw.jaw).c_str());
+    }
 }
+
+void addPhantomCommand(CLI::App& app, GlobalOptions& global) {
+    auto args = std::make_shared<PhantomArgs>();
+    auto* cmd = app.add_subcommand("phantom", "Write a synthetic jaw case (bone, teeth, axes) in the case layout");
+    cmd->add_option("dir", args->dir, "Case folder to write (<dir>/input/<jaw>/...)")->required();
+    cmd->add_option("--teeth", args->teeth, "Teeth per jaw, nearest the midline first")
+        ->check(CLI::Range(1, 16))
+        ->capture_default_str();
+    cmd->add_option("--seed", args->seed, "Perturbs sizes, angles and the triangulation")->capture_default_str();
+    cmd->add_option("--jaw", args->jaw, "Which jaw")
+        ->check(CLI::IsMember({"mandible", "maxilla", "both"}))
+        ->capture_default_str();
+    cmd->add_option("--triangles-scale", args->trianglesScale,
+                    "Multiplies the triangle counts (< 1 for a lighter case)")
+        ->check(CLI::Range(1e-3, 16.0))
+        ->capture_default_str();
+    cmd->callback([args, &global] { runPhantom(*args, global); });
+}
+
 }  // namespace
 JAWMESH_COMMAND(10, addPhantomCommand);
 }  // namespace jawmesh

@@ -1,5 +1,6 @@
 #include "cli/TerminalProgress.h"
 
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <unistd.h>
@@ -24,25 +25,21 @@ bool TerminalProgress::cancelled() const { return gInterrupts.load() > 0; }
 
 void TerminalProgress::begin(const std::string& stage) {
     std::lock_guard<std::mutex> lock(mutex_);
-    ++depth_;
-    if (depth_ > 1) return;  // nested stages report under the outer one
-    stage_ = stage;
-    stageStart_ = Clock::now();
-    lastDraw_ = Clock::time_point{};
+    stack_.push_back({stage, Clock::now()});
     lastPercent_ = -1;
     draw(0.0, false);
 }
 
 void TerminalProgress::update(double fraction) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (depth_ != 1) return;
-    draw(fraction, false);
+    if (!stack_.empty()) draw(fraction, false);
 }
 
 void TerminalProgress::end() {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (depth_ == 1) draw(1.0, true);
-    if (depth_ > 0) --depth_;
+    if (stack_.empty()) return;
+    if (stack_.size() == 1) draw(1.0, true);
+    stack_.pop_back();
 }
 
 void TerminalProgress::draw(double fraction, bool final) {
@@ -50,16 +47,18 @@ void TerminalProgress::draw(double fraction, bool final) {
     const auto now = Clock::now();
     const int percent = static_cast<int>(fraction * 100.0 + 0.5);
     if (!final) {
-        if (!tty_) return;  // logs get one line per stage, not a stream of updates
+        if (!tty_) return;  // logs get one line per top-level stage, not a stream of updates
         if (percent == lastPercent_ && now - lastDraw_ < std::chrono::milliseconds(250)) return;
     }
     lastPercent_ = percent;
     lastDraw_ = now;
-    const double seconds = std::chrono::duration<double>(now - stageStart_).count();
+    std::string name;
+    for (const Stage& s : stack_) name += (name.empty() ? "" : " / ") + s.name;
+    const double seconds = std::chrono::duration<double>(now - stack_.front().start).count();
     if (tty_)
-        std::fprintf(stderr, "\r\033[K[%s] %3d%% %.1f s%s", stage_.c_str(), percent, seconds, final ? "\n" : "");
+        std::fprintf(stderr, "\r\033[K[%s] %3d%% %.1f s%s", name.c_str(), percent, seconds, final ? "\n" : "");
     else
-        std::fprintf(stderr, "[%s] done in %.1f s\n", stage_.c_str(), seconds);
+        std::fprintf(stderr, "[%s] done in %.1f s\n", name.c_str(), seconds);
     std::fflush(stderr);
 }
 

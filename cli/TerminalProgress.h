@@ -1,14 +1,15 @@
-// Progress on a terminal: "[stage] 42% 3.1 s" redrawn in place on a TTY, one line per finished
-// stage otherwise; silent with --quiet. Ctrl-C sets a flag that library code polls, so a run stops
-// at a safe point and writes no partial output.
+// Progress on a terminal: "[mandible / carve] 42% 3.1 s" redrawn in place on a TTY, one line per
+// finished top-level stage otherwise; silent with --quiet. Nested stages show as "outer / inner"
+// with the innermost stage's percentage and the outer stage's elapsed time. Ctrl-C sets a flag that
+// library code polls, so a run stops at a safe point and writes no partial output.
 #pragma once
 
 #include "io/Progress.h"
 
-#include <atomic>
 #include <chrono>
 #include <mutex>
 #include <string>
+#include <vector>
 
 namespace jawmesh {
 
@@ -25,16 +26,18 @@ public:
 
 private:
     using Clock = std::chrono::steady_clock;
+    struct Stage {
+        std::string name;
+        Clock::time_point start;
+    };
     void draw(double fraction, bool final);
 
     bool quiet_;
     bool tty_;
     std::mutex mutex_;
-    std::string stage_;
-    Clock::time_point stageStart_;
+    std::vector<Stage> stack_;
     Clock::time_point lastDraw_;
     int lastPercent_ = -1;
-    int depth_ = 0;
 };
 
 }  // namespace jawmesh

@@ -1,119 +1,110 @@
-// Format dispatch plus the binary STL reader/writer (the hot path: segmentation exports are
-// binary STL of millions of triangles). The other formats live in their own files.
-// TODO(io): ASCII STL, OBJ, PLY, OFF readers; PLY/OBJ writers; full malformed-input checks.
+// Format dispatch by extension plus the checks every reader shares. The formats themselves live in
+// io/StlFormat.cpp, io/ObjFormat.cpp, io/PlyFormat.cpp and io/OffFormat.cpp.
 #include "io/MeshIO.h"
 
 #include "io/AtomicFile.h"
 #include "io/Error.h"
+#include "io/detail/MeshFormats.h"
 
 #include <algorithm>
-#include <cmath>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <unordered_map>
+#include <filesystem>
+#include <memory>
 
 namespace jawmesh {
 namespace {
 
-std::string lowerExtension(const std::string& path) {
+std::string readWholeFile(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        throw Error(path, "is not a regular file");
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!file) throw Error(path, std::string("cannot open file: ") + std::strerror(errno));
+    if (std::fseek(file.get(), 0, SEEK_END) != 0) throw Error(path, "cannot seek (not a regular file?)");
+    const long size = std::ftell(file.get());
+    if (size < 0) throw Error(path, "cannot read file size (not a regular file?)");
+    std::fseek(file.get(), 0, SEEK_SET);
+    std::string data;
+    data.resize(static_cast<std::size_t>(size));
+    if (size > 0 && std::fread(data.data(), 1, data.size(), file.get()) != data.size())
+        throw Error(path, "read failed");
+    return data;
+}
+
+}  // namespace
+
+std::string surfaceExtension(const std::string& path) {
+    const auto slash = path.find_last_of("/\\");
     const auto dot = path.find_last_of('.');
-    if (dot == std::string::npos) return {};
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
     std::string ext = path.substr(dot + 1);
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return ext;
 }
 
-std::string readWholeFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path, "cannot open file");
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    if (size < 0) throw Error(path, "cannot read file size");
-    std::string data(static_cast<std::size_t>(size), '\0');
-    in.seekg(0);
-    in.read(data.data(), size);
-    if (!in) throw Error(path, "read failed");
-    return data;
+bool isSurfaceExtension(const std::string& extension) {
+    return extension == "stl" || extension == "obj" || extension == "ply" || extension == "off";
 }
-
-struct VertexKeyHash {
-    std::size_t operator()(const std::array<float, 3>& k) const {
-        std::uint32_t b[3];
-        std::memcpy(b, k.data(), sizeof b);
-        std::size_t h = b[0];
-        h = h * 0x9E3779B97F4A7C15ull ^ b[1];
-        h = h * 0x9E3779B97F4A7C15ull ^ b[2];
-        return h;
-    }
-};
-
-SurfaceMesh readBinaryStl(const std::string& path, const std::string& data) {
-    if (data.size() < 84) throw Error(path, "binary STL shorter than its 84-byte header");
-    std::uint32_t count = 0;
-    std::memcpy(&count, data.data() + 80, 4);
-    const std::uint64_t needed = 84ull + 50ull * count;
-    if (data.size() < needed)
-        throw Error(path, "binary STL header promises " + std::to_string(count) + " triangles but the file holds only " +
-                              std::to_string((data.size() - 84) / 50));
-    if (count == 0) throw Error(path, "STL file has no triangles");
-    SurfaceMesh mesh;
-    mesh.triangles.resize(count);
-    mesh.vertices.reserve(count / 2 + 16);
-    // Welding identical float positions recovers the connectivity STL throws away.
-    std::unordered_map<std::array<float, 3>, std::int32_t, VertexKeyHash> index;
-    index.reserve(count);
-    const char* p = data.data() + 84;
-    for (std::uint32_t t = 0; t < count; ++t, p += 50) {
-        for (int c = 0; c < 3; ++c) {
-            std::array<float, 3> key;
-            std::memcpy(key.data(), p + 12 + 12 * c, 12);
-            for (float v : key)
-                if (!std::isfinite(v)) throw Error(path, "triangle " + std::to_string(t) + " has a NaN or infinite coordinate");
-            for (float& v : key)
-                if (v == 0.0f) v = 0.0f;  // -0 and +0 are the same point
-            auto [it, inserted] = index.try_emplace(key, static_cast<std::int32_t>(mesh.vertices.size()));
-            if (inserted) mesh.vertices.emplace_back(key[0], key[1], key[2]);
-            mesh.triangles[t][static_cast<std::size_t>(c)] = it->second;
-        }
-    }
-    return mesh;
-}
-
-void writeBinaryStl(const SurfaceMesh& mesh, std::ostream& out) {
-    char header[80] = {};
-    std::snprintf(header, sizeof header, "jawmesh binary STL, millimetres");
-    out.write(header, 80);
-    const auto count = static_cast<std::uint32_t>(mesh.triangles.size());
-    out.write(reinterpret_cast<const char*>(&count), 4);
-    char record[50] = {};
-    for (const Tri& t : mesh.triangles) {
-        const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
-        const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[1])];
-        const Vec3& c = mesh.vertices[static_cast<std::size_t>(t[2])];
-        Vec3 n = (b - a).cross(c - a);
-        const double len = n.norm();
-        if (len > 0) n /= len;
-        const float values[12] = {float(n.x()), float(n.y()), float(n.z()), float(a.x()), float(a.y()), float(a.z()),
-                                  float(b.x()), float(b.y()), float(b.z()), float(c.x()), float(c.y()), float(c.z())};
-        std::memcpy(record, values, 48);
-        out.write(record, 50);
-    }
-}
-
-}  // namespace
 
 SurfaceMesh readSurface(const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    if (ext != "stl") throw Error(path, "unsupported surface format '." + ext + "'");
-    const std::string data = readWholeFile(path);
-    if (data.empty()) throw Error(path, "file is empty");
-    return readBinaryStl(path, data);
+    const std::string ext = surfaceExtension(path);
+    if (!isSurfaceExtension(ext))
+        throw Error(path, "unsupported surface format '." + ext + "' (expected .stl, .obj, .ply or .off)");
+    return readSurfaceFromMemory(readWholeFile(path), path);
+}
+
+SurfaceMesh readSurfaceFromMemory(const std::string& data, const std::string& name) {
+    const std::string ext = surfaceExtension(name);
+    if (!isSurfaceExtension(ext))
+        throw Error(name, "unsupported surface format '." + ext + "' (expected .stl, .obj, .ply or .off)");
+    if (data.empty()) throw Error(name, "file is empty");
+    if (ext == "stl") return detail::readStl(name, data);
+    if (ext == "obj") return detail::readObj(name, data);
+    if (ext == "ply") return detail::readPly(name, data);
+    return detail::readOff(name, data);
 }
 
 void writeSurface(const SurfaceMesh& mesh, const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    if (ext != "stl") throw Error(path, "cannot write surface format '." + ext + "'");
-    writeFileAtomically(path, [&](std::ostream& out) { writeBinaryStl(mesh, out); });
+    const std::string ext = surfaceExtension(path);
+    for (const Tri& t : mesh.triangles)
+        for (std::int32_t v : t)
+            if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertices.size())
+                throw Error(path, "cannot write a mesh whose triangles index missing vertices");
+    if (ext == "stl") {
+        writeFileAtomically(path, [&](std::ostream& out) { detail::writeBinaryStl(mesh, out); });
+    } else if (ext == "ply") {
+        writeFileAtomically(path, [&](std::ostream& out) { detail::writeBinaryPly(mesh, out); });
+    } else if (ext == "obj") {
+        writeFileAtomically(path, [&](std::ostream& out) { detail::writeObj(mesh, out); });
+    } else {
+        throw Error(path, "cannot write surface format '." + ext + "' (expected .stl, .ply or .obj)");
+    }
 }
 
+namespace detail {
+
+void validateMesh(const std::string& path, const SurfaceMesh& mesh) {
+    if (mesh.triangles.empty()) throw Error(path, "file holds no triangles");
+    if (mesh.vertices.size() > kMaxElements || mesh.triangles.size() > kMaxElements)
+        throw Error(path, "more than 2^31-1 vertices or triangles");
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+        if (!mesh.vertices[i].allFinite())
+            throw Error(path, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+    const auto n = static_cast<std::int64_t>(mesh.vertices.size());
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (std::int32_t v : mesh.triangles[t])
+            if (v < 0 || v >= n)
+                throw Error(path, "triangle " + std::to_string(t) + " uses vertex index " + std::to_string(v) +
+                                      " outside 0.." + std::to_string(n - 1));
+}
+
+void requireText(const std::string& path, std::string_view data, const char* format) {
+    if (data.find('\0') != std::string_view::npos)
+        throw Error(path, std::string("holds binary data (NUL bytes); not a text ") + format + " file");
+}
+
+}  // namespace detail
 }  // namespace jawmesh

@@ -1,0 +1,144 @@
+// jawmesh carve: case -> level sets -> carved PDLs -> label field (.vdb) + summary.json.
+#include "cli/Commands.h"
+#include "io/AtomicFile.h"
+#include "io/Case.h"
+#include "io/Error.h"
+#include "io/ResourceUsage.h"
+#include "levelset/CarveGaps.h"
+#include "levelset/LabelFieldIO.h"
+#include "levelset/MeshToLevelSet.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <iostream>
+#include <memory>
+
+namespace jawmesh {
+namespace {
+
+struct CarveCliOptions {
+    std::string caseDir;
+    std::string output;
+    std::string jaw = "mandible";
+    double voxelMm = 0.05;
+    double thicknessMm = 0.2;
+    double ratio = 0.5;
+    std::vector<double> profile;
+    double clearanceVoxels = 1.0;
+    double gapBridgeMm = 0.5;
+    bool json = false;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+nlohmann::json summaryJson(const CarveSummary& s, const CarveOptions& o) {
+    nlohmann::json teeth = nlohmann::json::array();
+    for (const auto& t : s.teeth) {
+        teeth.push_back({{"unn", t.unn},
+                         {"tooth_volume_mm3", t.toothVolumeMm3},
+                         {"pdl_volume_mm3", t.pdlVolumeMm3},
+                         {"root_area_fraction", t.rootAreaFraction},
+                         {"impacted", t.impacted},
+                         {"thickness_mm",
+                          {{"samples", t.thickness.samples},
+                           {"min", t.thickness.min},
+                           {"p05", t.thickness.p05},
+                           {"mean", t.thickness.mean},
+                           {"p95", t.thickness.p95},
+                           {"max", t.thickness.max}}}});
+    }
+    nlohmann::json options = {{"pdl_thickness_mm", o.pdlThicknessMm},
+                              {"pdl_ratio", o.pdlRatio},
+                              {"clearance_voxels", o.clearanceVoxels},
+                              {"gap_bridge_mm", o.gapBridgeMm},
+                              {"cap_exclusion_mm", o.capExclusionMm}};
+    if (o.profile)
+        options["pdl_profile_mm"] = {{"cervical", o.profile->cervical}, {"mid_root", o.profile->midRoot}, {"apical", o.profile->apical}};
+    return {{"voxel_mm", s.voxelSizeMm},
+            {"options", options},
+            {"teeth", teeth},
+            {"clearance_voxels_removed", s.clearanceVoxelsRemoved},
+            {"tooth_bone_contacts", s.toothBoneContacts},
+            {"warnings", s.warnings},
+            {"carve_seconds", s.seconds}};
+}
+
+void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
+    const auto start = std::chrono::steady_clock::now();
+    Progress& progress = terminalProgress(global);
+    const Jaw jaw = jawFromName(opt.jaw);
+    const CaseInfo info = discoverCase(opt.caseDir);
+    const JawCase* jc = nullptr;
+    for (const auto& j : info.jaws)
+        if (j.jaw == jaw) jc = &j;
+    if (!jc) throw Error(opt.caseDir, "case has no " + opt.jaw);
+    const JawSurfaces surfaces = loadJaw(*jc, LoadOptions(), progress);
+    const double secondsLoad = secondsSince(start);
+
+    CarveOptions co;
+    co.pdlThicknessMm = opt.thicknessMm;
+    co.pdlRatio = opt.ratio;
+    co.clearanceVoxels = opt.clearanceVoxels;
+    co.gapBridgeMm = opt.gapBridgeMm;
+    co.axes = surfaces.axes;
+    if (!opt.profile.empty()) {
+        if (opt.profile.size() != 3) throw Error("--pdl-profile takes three values: cervical,mid,apical (mm)");
+        co.profile = PdlProfile{opt.profile[0], opt.profile[1], opt.profile[2]};
+    }
+
+    const auto tLevel = std::chrono::steady_clock::now();
+    openvdb::FloatGrid::Ptr bone = meshToLevelSet(surfaces.bone, opt.voxelMm, 3.0, progress);
+    bone->setName(labelName(boneLabel(jaw)));
+    std::map<int, openvdb::FloatGrid::ConstPtr> teeth;
+    for (const auto& [unn, mesh] : surfaces.teeth) {
+        auto g = meshToLevelSet(mesh, opt.voxelMm, 3.0, progress);
+        g->setName(labelName(toothLabel(unn)));
+        teeth[unn] = g;
+    }
+    const double secondsLevelSets = secondsSince(tLevel);
+
+    CarveSummary summary;
+    const LabelField field = carveJaw(jaw, *bone, teeth, co, summary, progress);
+
+    const std::string jawDir = opt.output + "/" + jawName(jaw);
+    writeLabelField(field, jawDir + "/levelsets");
+    nlohmann::json j = summaryJson(summary, co);
+    j["case"] = opt.caseDir;
+    j["jaw"] = jawName(jaw);
+    j["notes"] = surfaces.notes;
+    j["seconds"] = {{"load", secondsLoad}, {"level_sets", secondsLevelSets}, {"carve", summary.seconds}, {"total", secondsSince(start)}};
+    j["peak_memory_bytes"] = peakResidentMemoryBytes();
+    writeFileAtomically(jawDir + "/summary.json", [&](std::ostream& os) { os << j.dump(2) << "\n"; }, false);
+    if (opt.json) std::cout << j.dump() << std::endl;
+    if (!global.quiet)
+        for (const auto& w : summary.warnings) std::cerr << "warning: " << w << "\n";
+}
+
+void addCarveCommand(CLI::App& app, GlobalOptions& global) {
+    auto opt = std::make_shared<CarveCliOptions>();
+    auto* cmd = app.add_subcommand(
+        "carve",
+        "Case -> labelled grids: roots eroded, PDL of the requested thickness between root and socket with a smooth "
+        "cap at the alveolar crest, crowns kept, teeth kept apart. Writes <out>/<jaw>/levelsets/{labels,bone_*,"
+        "tooth_*,pdl_*}.vdb and <out>/<jaw>/summary.json (PDL volume and thickness statistics per tooth, warnings).");
+    cmd->add_option("case", opt->caseDir, "Case folder (Open-Full-Jaw layout)")->required()->check(CLI::ExistingDirectory);
+    cmd->add_option("-o,--output", opt->output, "Output folder")->required();
+    cmd->add_option("--jaw", opt->jaw, "mandible | maxilla (default mandible)")->check(CLI::IsMember({"mandible", "maxilla"}));
+    cmd->add_option("--voxel", opt->voxelMm, "Voxel size, mm (default 0.05)")->check(CLI::PositiveNumber);
+    cmd->add_option("--pdl-thickness", opt->thicknessMm, "PDL thickness, mm (default 0.2)")->check(CLI::PositiveNumber);
+    cmd->add_option("--pdl-ratio", opt->ratio, "Share of the thickness taken from the root, 0..1 (default 0.5)")
+        ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--pdl-profile", opt->profile, "Thickness along the root: cervical,mid,apical (mm)")->delimiter(',');
+    cmd->add_option("--clearance", opt->clearanceVoxels, "Gap between different teeth and PDLs, voxels (default 1)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--gap-bridge", opt->gapBridgeMm, "Widest root-socket gap bridged, mm (default 0.5)")->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");
+    cmd->callback([opt, &global] { runCarve(*opt, global); });
+}
+
+}  // namespace
+JAWMESH_COMMAND(30, addCarveCommand);
+}  // namespace jawmesh

@@ -1,0 +1,139 @@
+#include "filters/ExtractInterfaces.h"
+
+#include "filters/LabelEdges.h"
+#include "filters/RegionSeeds.h"
+#include "filters/WellComposedLabels.h"
+#include "io/Error.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+
+namespace jawmesh {
+namespace {
+
+using openvdb::Coord;
+
+// Signed distances of the regions at voxel centres (mm); 0 stands for "no field".
+class Fields {
+public:
+    explicit Fields(const std::map<Label, openvdb::FloatGrid::Ptr>& d) {
+        for (const auto& [L, g] : d)
+            if (g) acc_.emplace(L, g->getConstAccessor());
+    }
+    bool has(Label L) const { return acc_.count(L) > 0; }
+    double at(Label L, const Coord& v) const { return acc_.at(L).getValue(v); }
+
+    /// Parameter t in [0, 1] of the a|b interface along p -> q (lab(p) = a, lab(q) = b).
+    double crossing(Label a, Label b, const Coord& p, const Coord& q) const {
+        const auto phi = [&](const Coord& x) -> double {
+            const bool ha = a != kOutsideLabel && has(a), hb = b != kOutsideLabel && has(b);
+            if (ha && hb) return at(a, x) - at(b, x);
+            if (ha) return 2.0 * at(a, x);
+            if (hb) return -2.0 * at(b, x);
+            return 0.0;
+        };
+        const double fp = phi(p), fq = phi(q);
+        if (!(fp < 0.0 && fq > 0.0)) return 0.5;  // fields disagree with labels (repaired voxel)
+        return std::clamp(fp / (fp - fq), 0.0, 1.0);
+    }
+
+private:
+    std::map<Label, openvdb::FloatGrid::ConstAccessor> acc_;
+};
+
+constexpr int kCellEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                   {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+
+}  // namespace
+
+InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions& options,
+                                   Progress& progress) {
+    if (!field.labels) throw Error("interface extraction: the label field has no label grid");
+    if (!field.labels->transform().isLinear())
+        throw Error("interface extraction: the label grid's transform is not linear");
+    ProgressStage stage(progress, "interface extraction");
+
+    openvdb::Int32Grid::Ptr labels = field.labels->deepCopy();
+    if (options.repairDiagonalContacts)
+        makeLabelsWellComposed(*labels, field.distances, progress);
+    else if (countCriticalCells(*labels, field.distances) > 0)
+        throw Error("interface extraction: the label field has diagonal-only contacts");
+    stage.update(0.3);
+
+    const std::vector<LabelEdge> edges = findLabelEdges(*labels, field.distances);
+    const std::vector<Coord> cells = dualCellsOf(edges);
+    progress.checkCancelled();
+    stage.update(0.4);
+
+    const auto& xform = labels->transform();
+    const openvdb::Mat3d jac = xform.baseMap()->getAffineMap()->getMat4().getMat3();
+    const bool mirrored = jac.det() < 0.0;
+    const double lo = std::clamp(options.cellMargin, 0.0, 0.5), hi = 1.0 - lo;
+
+    InterfaceComplex out;
+    out.surface.vertices.resize(cells.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 1024), [&](const auto& r) {
+        progress.checkCancelled();
+        auto acc = labels->getConstAccessor();
+        const Fields fields(field.distances);
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            std::array<Label, 8> lab;
+            for (int k = 0; k < 8; ++k) lab[k] = acc.getValue(dualCellCorner(cells[i], k));
+            openvdb::Vec3d sum(0.0);
+            int n = 0;
+            for (const auto& e : kCellEdges) {
+                if (lab[e[0]] == lab[e[1]]) continue;
+                const Coord p = dualCellCorner(cells[i], e[0]), q = dualCellCorner(cells[i], e[1]);
+                const double t = fields.crossing(lab[e[0]], lab[e[1]], p, q);
+                sum += p.asVec3d() + t * (q - p).asVec3d();
+                ++n;
+            }
+            openvdb::Vec3d x = n > 0 ? sum / double(n) : cells[i].asVec3d() + openvdb::Vec3d(0.5);
+            for (int a = 0; a < 3; ++a) x[a] = std::clamp(x[a], cells[i][a] + lo, cells[i][a] + hi);
+            const auto w = xform.indexToWorld(x);
+            out.surface.vertices[i] = Vec3(w.x(), w.y(), w.z());
+        }
+    });
+    stage.update(0.6);
+
+    out.surface.triangles.resize(2 * edges.size());
+    out.sides.resize(2 * edges.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 4096), [&](const auto& r) {
+        progress.checkCancelled();
+        auto acc = labels->getConstAccessor();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const LabelEdge& e = edges[i];
+            const int d1 = (e.axis + 1) % 3, d2 = (e.axis + 2) % 3;
+            Coord c[4] = {e.voxel, e.voxel, e.voxel, e.voxel};  // normal along +axis
+            c[0][d1] -= 1; c[0][d2] -= 1;
+            c[1][d2] -= 1;
+            c[3][d1] -= 1;
+            std::array<std::int32_t, 4> q;
+            for (int k = 0; k < 4; ++k) q[k] = std::int32_t(dualCellIndex(cells, c[k]));
+            Coord w = e.voxel;
+            w[e.axis] += 1;
+            const Label la = acc.getValue(e.voxel), lb = acc.getValue(w);
+            const std::array<Label, 2> sides = {std::min(la, lb), std::max(la, lb)};
+            // the quad's normal points into lb; flip so that it points into sides[0]
+            if ((lb != sides[0]) != mirrored) std::swap(q[1], q[3]);
+            const auto& V = out.surface.vertices;
+            const bool diag02 = (V[q[0]] - V[q[2]]).squaredNorm() <= (V[q[1]] - V[q[3]]).squaredNorm();
+            if (diag02) {
+                out.surface.triangles[2 * i] = {q[0], q[1], q[2]};
+                out.surface.triangles[2 * i + 1] = {q[0], q[2], q[3]};
+            } else {
+                out.surface.triangles[2 * i] = {q[0], q[1], q[3]};
+                out.surface.triangles[2 * i + 1] = {q[1], q[2], q[3]};
+            }
+            out.sides[2 * i] = sides;
+            out.sides[2 * i + 1] = sides;
+        }
+    });
+    stage.update(0.8);
+    out.seeds = findRegionSeeds(*labels, field.distances, progress);
+    return out;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,42 @@
+// Label field -> conformal multi-material interface surface (multi-label surface nets).
+//
+// For every pair of face-adjacent voxels with different labels the dual quad between them is
+// emitted (two triangles), with one vertex per dual cell (2x2x2 voxel block). So every interface
+// (tooth/PDL, PDL/bone, bone/outside, ...) appears exactly once and is shared by the two regions it
+// separates, and every region's boundary is closed. Junction curves (where three or more regions
+// meet) are the edges shared by triangles of different label pairs; they need no extra marking.
+//
+// Manifoldness: the label grid is first made well-composed (WellComposedLabels.h: diagonal-only
+// contacts are joined by relabelling one voxel), which makes one vertex per dual cell enough for
+// each region's boundary to be a 2-manifold. The input LabelField is not modified (a copy is).
+//
+// Vertex placement: each vertex is the mean of the zero crossings, along the crossed edges of its
+// dual cell, of (d_a - d_b) for the two regions a, b of each edge (d = signed distance of the
+// region; for the outside, the other region's distance alone), then clamped to the cell shrunk by
+// `cellMargin` so neighbouring cells can never swap their vertices.
+#pragma once
+
+#include "io/InterfaceComplex.h"
+#include "io/Progress.h"
+#include "levelset/LabelField.h"
+
+namespace jawmesh {
+
+struct ExtractOptions {
+    /// Vertices stay at least this fraction of a voxel inside their dual cell (0 .. 0.5).
+    double cellMargin = 0.05;
+    /// Join diagonal-only contacts first (see WellComposedLabels.h). When false the labels must
+    /// already be well-composed, otherwise Error is thrown.
+    bool repairDiagonalContacts = true;
+};
+
+/// Extracts the interface complex of `field`: surface, label pair per triangle (sides[t][0] is the
+/// smaller label, so normals point out of the higher label: into the outside, out of teeth into
+/// PDL...), and one seed per connected component of every region (findRegionSeeds on the
+/// well-composed labels). Deterministic (independent of the thread count).
+/// Throws Error when field.labels is missing or the transform is not linear, Cancelled on cancel.
+/// Cost: O(voxels next to an interface); memory ~100 bytes per interface quad.
+InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions& options = {},
+                                   Progress& progress = noProgress());
+
+}  // namespace jawmesh

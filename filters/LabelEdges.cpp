@@ -1,0 +1,79 @@
+#include "filters/LabelEdges.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+
+namespace jawmesh {
+
+std::vector<LabelEdge> findLabelEdges(const openvdb::Int32Grid& labels,
+                                      const std::map<Label, openvdb::FloatGrid::Ptr>& distances) {
+    using MaskTree = openvdb::MaskTree;
+    MaskTree mask;
+    for (auto leaf = labels.tree().cbeginLeaf(); leaf; ++leaf)
+        mask.touchLeaf(leaf->origin())->setValuesOn();
+    for (const auto& [label, grid] : distances)
+        if (grid) mask.topologyUnion(grid->tree());
+    mask.voxelizeActiveTiles();
+
+    std::vector<const MaskTree::LeafNodeType*> leaves;
+    leaves.reserve(mask.leafCount());
+    for (auto leaf = mask.cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
+
+    std::vector<std::vector<LabelEdge>> perLeaf(leaves.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 16), [&](const auto& r) {
+        auto acc = labels.getConstAccessor();
+        openvdb::tree::ValueAccessor<const MaskTree> maskAcc(mask);
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            auto& out = perLeaf[i];
+            for (auto it = leaves[i]->cbeginValueOn(); it; ++it) {
+                const openvdb::Coord v = it.getCoord();
+                const Label lv = acc.getValue(v);
+                for (int axis = 0; axis < 3; ++axis) {
+                    openvdb::Coord w = v;
+                    w[axis] += 1;
+                    if (acc.getValue(w) != lv) out.push_back({v, axis});
+                    openvdb::Coord u = v;
+                    u[axis] -= 1;
+                    // edge (u, v) belongs to u when u is visited itself
+                    if (!maskAcc.isValueOn(u) && acc.getValue(u) != lv) out.push_back({u, axis});
+                }
+            }
+        }
+    });
+    std::vector<LabelEdge> edges;
+    std::size_t total = 0;
+    for (const auto& e : perLeaf) total += e.size();
+    edges.reserve(total);
+    for (const auto& e : perLeaf) edges.insert(edges.end(), e.begin(), e.end());
+    tbb::parallel_sort(edges.begin(), edges.end(), [](const LabelEdge& a, const LabelEdge& b) {
+        return a.voxel < b.voxel || (a.voxel == b.voxel && a.axis < b.axis);
+    });
+    return edges;
+}
+
+std::vector<openvdb::Coord> dualCellsOf(const std::vector<LabelEdge>& edges) {
+    std::vector<openvdb::Coord> cells(edges.size() * 4);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 4096), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const int d1 = (edges[i].axis + 1) % 3, d2 = (edges[i].axis + 2) % 3;
+            for (int k = 0; k < 4; ++k) {
+                openvdb::Coord c = edges[i].voxel;
+                c[d1] -= (k & 1);
+                c[d2] -= (k >> 1);
+                cells[4 * i + k] = c;
+            }
+        }
+    });
+    tbb::parallel_sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    return cells;
+}
+
+std::int64_t dualCellIndex(const std::vector<openvdb::Coord>& cells, const openvdb::Coord& c) {
+    const auto it = std::lower_bound(cells.begin(), cells.end(), c);
+    return (it != cells.end() && *it == c) ? std::int64_t(it - cells.begin()) : -1;
+}
+
+}  // namespace jawmesh

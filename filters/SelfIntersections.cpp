@@ -1,0 +1,304 @@
+#include "filters/SelfIntersections.h"
+
+#include "io/Error.h"
+
+#include <embree3/rtcore.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace jawmesh {
+namespace {
+
+// ---- exact expansion arithmetic (Shewchuk 1997), used only when the float filter is unsure ----
+using Expansion = std::vector<double>;  // non-overlapping, increasing magnitude
+
+inline void twoSum(double a, double b, double& x, double& y) {
+    x = a + b;
+    const double bv = x - a;
+    const double av = x - bv;
+    y = (a - av) + (b - bv);
+}
+inline void fastTwoSum(double a, double b, double& x, double& y) {
+    x = a + b;
+    y = b - (x - a);
+}
+inline void twoProduct(double a, double b, double& x, double& y) {
+    x = a * b;
+    y = std::fma(a, b, -x);
+}
+
+Expansion grow(const Expansion& e, double b) {
+    Expansion h;
+    h.reserve(e.size() + 1);
+    double q = b;
+    for (double ei : e) {
+        double s, err;
+        twoSum(q, ei, s, err);
+        if (err != 0.0) h.push_back(err);
+        q = s;
+    }
+    if (q != 0.0 || h.empty()) h.push_back(q);
+    return h;
+}
+
+Expansion add(Expansion e, const Expansion& f) {
+    for (double fi : f) e = grow(e, fi);
+    return e;
+}
+
+Expansion scale(const Expansion& e, double b) {
+    Expansion h;
+    h.reserve(2 * e.size());
+    double q, err;
+    twoProduct(e[0], b, q, err);
+    if (err != 0.0) h.push_back(err);
+    for (std::size_t i = 1; i < e.size(); ++i) {
+        double p1, p0, sum;
+        twoProduct(e[i], b, p1, p0);
+        twoSum(q, p0, sum, err);
+        if (err != 0.0) h.push_back(err);
+        fastTwoSum(p1, sum, q, err);
+        if (err != 0.0) h.push_back(err);
+    }
+    if (q != 0.0 || h.empty()) h.push_back(q);
+    return h;
+}
+
+Expansion mul(const Expansion& e, const Expansion& f) {
+    Expansion r{0.0};
+    for (double fi : f) r = add(r, scale(e, fi));
+    return r;
+}
+
+Expansion diff(double a, double b) {
+    double x, y;
+    twoSum(a, -b, x, y);
+    return y != 0.0 ? Expansion{y, x} : Expansion{x};
+}
+
+Expansion negate(Expansion e) {
+    for (double& v : e) v = -v;
+    return e;
+}
+
+int sign(const Expansion& e) {
+    for (auto it = e.rbegin(); it != e.rend(); ++it)
+        if (*it != 0.0) return *it > 0.0 ? 1 : -1;
+    return 0;
+}
+
+int orient2dExact(double ax, double ay, double bx, double by, double cx, double cy) {
+    const double det = (ax - cx) * (by - cy) - (ay - cy) * (bx - cx);
+    const double perm = std::abs((ax - cx) * (by - cy)) + std::abs((ay - cy) * (bx - cx));
+    if (std::abs(det) > 1e-15 * perm) return det > 0.0 ? 1 : -1;
+    const Expansion l = mul(diff(ax, cx), diff(by, cy));
+    const Expansion r = mul(diff(ay, cy), diff(bx, cx));
+    return sign(add(l, negate(r)));
+}
+
+// 2D view of 3D points: drop coordinate `axis`.
+struct Plane2 {
+    int u, v;
+    explicit Plane2(int axis) : u((axis + 1) % 3), v((axis + 2) % 3) {}
+    int orient(const Vec3& a, const Vec3& b, const Vec3& c) const {
+        return orient2dExact(a[u], a[v], b[u], b[v], c[u], c[v]);
+    }
+};
+
+bool segSeg2(const Plane2& P, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+    const int o1 = P.orient(p, q, r), o2 = P.orient(p, q, s);
+    const int o3 = P.orient(r, s, p), o4 = P.orient(r, s, q);
+    if (o1 * o2 > 0 || o3 * o4 > 0) return false;
+    if (o1 == 0 && o2 == 0 && o3 == 0 && o4 == 0) {  // collinear: overlap of the projections
+        for (int k : {P.u, P.v}) {
+            if (std::max(p[k], q[k]) < std::min(r[k], s[k])) return false;
+            if (std::max(r[k], s[k]) < std::min(p[k], q[k])) return false;
+        }
+    }
+    return true;
+}
+
+bool pointInTri2(const Plane2& P, const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const int s1 = P.orient(a, b, p), s2 = P.orient(b, c, p), s3 = P.orient(c, a, p);
+    return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
+}
+
+// A projection in which triangle a, b, c is not degenerate; -1 if none (collinear corners).
+int projectionAxis(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 n = (b - a).cross(c - a).cwiseAbs();
+    int order[3] = {0, 1, 2};
+    std::sort(order, order + 3, [&](int i, int j) { return n[i] > n[j]; });
+    for (int axis : order)
+        if (Plane2(axis).orient(a, b, c) != 0) return axis;
+    return -1;
+}
+
+bool segTriCoplanar(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const int axis = projectionAxis(a, b, c);
+    if (axis < 0) {  // degenerate triangle: its edges
+        const Plane2 P(projectionAxis(p, q, a) >= 0 ? projectionAxis(p, q, a) : 2);
+        return segSeg2(P, p, q, a, b) || segSeg2(P, p, q, b, c) || segSeg2(P, p, q, c, a);
+    }
+    const Plane2 P(axis);
+    return pointInTri2(P, p, a, b, c) || pointInTri2(P, q, a, b, c) || segSeg2(P, p, q, a, b) ||
+           segSeg2(P, p, q, b, c) || segSeg2(P, p, q, c, a);
+}
+
+// Closed segment p q against closed triangle a b c.
+bool segTri(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const int op = orient3dExact(a, b, c, p), oq = orient3dExact(a, b, c, q);
+    if (op * oq > 0) return false;
+    if (op == 0 && oq == 0) return segTriCoplanar(p, q, a, b, c);
+    const int s1 = orient3dExact(p, q, a, b), s2 = orient3dExact(p, q, b, c),
+              s3 = orient3dExact(p, q, c, a);
+    return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
+}
+
+struct BoxData {
+    const SurfaceMesh* mesh;
+};
+
+void boundsFunc(const RTCBoundsFunctionArguments* args) {
+    const auto* mesh = static_cast<const BoxData*>(args->geometryUserPtr)->mesh;
+    const Tri& t = mesh->triangles[args->primID];
+    BBox b;
+    for (int k = 0; k < 3; ++k) b.extend(mesh->vertices[t[k]]);
+    // Embree boxes are float: widen so that exactly touching triangles are never missed.
+    const double pad = 1e-6 * (b.size().maxCoeff() + b.max.cwiseAbs().maxCoeff() + b.min.cwiseAbs().maxCoeff());
+    args->bounds_o->lower_x = float(b.min.x() - pad);
+    args->bounds_o->lower_y = float(b.min.y() - pad);
+    args->bounds_o->lower_z = float(b.min.z() - pad);
+    args->bounds_o->upper_x = float(b.max.x() + pad);
+    args->bounds_o->upper_y = float(b.max.y() + pad);
+    args->bounds_o->upper_z = float(b.max.z() + pad);
+}
+
+using PairList = std::vector<std::pair<std::int32_t, std::int32_t>>;
+
+void collideFunc(void* userPtr, RTCCollision* collisions, unsigned int count) {
+    auto& local = static_cast<tbb::enumerable_thread_specific<PairList>*>(userPtr)->local();
+    for (unsigned int i = 0; i < count; ++i) {
+        auto a = std::int32_t(collisions[i].primID0), b = std::int32_t(collisions[i].primID1);
+        if (a == b) continue;
+        if (a > b) std::swap(a, b);
+        local.emplace_back(a, b);
+    }
+}
+
+}  // namespace
+
+int orient3dExact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    const double adx = a.x() - d.x(), ady = a.y() - d.y(), adz = a.z() - d.z();
+    const double bdx = b.x() - d.x(), bdy = b.y() - d.y(), bdz = b.z() - d.z();
+    const double cdx = c.x() - d.x(), cdy = c.y() - d.y(), cdz = c.z() - d.z();
+    const double det = adx * (bdy * cdz - bdz * cdy) + bdx * (cdy * adz - cdz * ady) +
+                       cdx * (ady * bdz - adz * bdy);
+    const double perm = std::abs(adx) * (std::abs(bdy * cdz) + std::abs(bdz * cdy)) +
+                        std::abs(bdx) * (std::abs(cdy * adz) + std::abs(cdz * ady)) +
+                        std::abs(cdx) * (std::abs(ady * bdz) + std::abs(adz * bdy));
+    if (std::abs(det) > 1e-14 * perm) return det > 0.0 ? 1 : -1;
+    const Expansion eadx = diff(a.x(), d.x()), eady = diff(a.y(), d.y()), eadz = diff(a.z(), d.z());
+    const Expansion ebdx = diff(b.x(), d.x()), ebdy = diff(b.y(), d.y()), ebdz = diff(b.z(), d.z());
+    const Expansion ecdx = diff(c.x(), d.x()), ecdy = diff(c.y(), d.y()), ecdz = diff(c.z(), d.z());
+    const Expansion m1 = add(mul(ebdy, ecdz), negate(mul(ebdz, ecdy)));
+    const Expansion m2 = add(mul(ecdy, eadz), negate(mul(ecdz, eady)));
+    const Expansion m3 = add(mul(eady, ebdz), negate(mul(eadz, ebdy)));
+    return sign(add(add(mul(eadx, m1), mul(ebdx, m2)), mul(ecdx, m3)));
+}
+
+bool triangleDegenerate(const Vec3& a, const Vec3& b, const Vec3& c) {
+    return projectionAxis(a, b, c) < 0;
+}
+
+bool trianglesIntersect(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const Tri& ib) {
+    int sharedA[3], sharedB[3], nShared = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (ia[i] == ib[j]) {
+                sharedA[nShared] = i;
+                sharedB[nShared] = j;
+                ++nShared;
+            }
+    if (nShared >= 3) return true;
+    if (nShared == 2) {
+        const Vec3& s = a[sharedA[0]];
+        const Vec3& t = a[sharedA[1]];
+        const Vec3& ao = a[3 - sharedA[0] - sharedA[1]];
+        const Vec3& bo = b[3 - sharedB[0] - sharedB[1]];
+        if (orient3dExact(s, t, ao, bo) != 0) return false;
+        const int axis = projectionAxis(s, t, ao);
+        if (axis < 0) return false;  // degenerate, reported separately
+        const Plane2 P(axis);
+        return P.orient(s, t, ao) * P.orient(s, t, bo) > 0;
+    }
+    if (nShared == 1) {
+        const int i = sharedA[0], j = sharedB[0];
+        return segTri(a[(i + 1) % 3], a[(i + 2) % 3], b[0], b[1], b[2]) ||
+               segTri(b[(j + 1) % 3], b[(j + 2) % 3], a[0], a[1], a[2]);
+    }
+    for (int k = 0; k < 3; ++k) {
+        if (segTri(a[k], a[(k + 1) % 3], b[0], b[1], b[2])) return true;
+        if (segTri(b[k], b[(k + 1) % 3], a[0], a[1], a[2])) return true;
+    }
+    return false;
+}
+
+SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh) {
+    SelfIntersectionReport report;
+    const auto nv = std::int32_t(mesh.vertices.size());
+    for (const Tri& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k)
+            if (t[k] < 0 || t[k] >= nv) throw Error("self-intersection check: vertex index out of range");
+    const std::size_t nt = mesh.triangles.size();
+    if (nt == 0) return report;
+
+    for (std::size_t i = 0; i < nt; ++i) {
+        const Tri& t = mesh.triangles[i];
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+            triangleDegenerate(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]))
+            report.degenerate.push_back(std::int32_t(i));
+    }
+
+    RTCDevice device = rtcNewDevice(nullptr);
+    if (!device) throw Error("self-intersection check: cannot create an Embree device");
+    std::unique_ptr<RTCDeviceTy, void (*)(RTCDevice)> deviceGuard(device, rtcReleaseDevice);
+    RTCScene scene = rtcNewScene(device);
+    std::unique_ptr<RTCSceneTy, void (*)(RTCScene)> sceneGuard(scene, rtcReleaseScene);
+    BoxData data{&mesh};
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, unsigned(nt));
+    rtcSetGeometryUserData(geom, &data);
+    rtcSetGeometryBoundsFunction(geom, boundsFunc, nullptr);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene);
+
+    tbb::enumerable_thread_specific<PairList> candidates;
+    rtcCollide(scene, scene, collideFunc, &candidates);
+    PairList all;
+    for (auto& local : candidates) all.insert(all.end(), local.begin(), local.end());
+    tbb::parallel_sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+
+    std::vector<char> hit(all.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all.size(), 1024), [&](const auto& r) {
+        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+            const Tri& ta = mesh.triangles[all[k].first];
+            const Tri& tb = mesh.triangles[all[k].second];
+            const Vec3 pa[3] = {mesh.vertices[ta[0]], mesh.vertices[ta[1]], mesh.vertices[ta[2]]};
+            const Vec3 pb[3] = {mesh.vertices[tb[0]], mesh.vertices[tb[1]], mesh.vertices[tb[2]]};
+            hit[k] = trianglesIntersect(pa, ta, pb, tb) ? 1 : 0;
+        }
+    });
+    for (std::size_t k = 0; k < all.size(); ++k)
+        if (hit[k]) report.pairs.push_back(all[k]);
+    return report;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,90 @@
+// Case folders in the Open-Full-Jaw input layout (docs/DESIGN.md):
+//   <case>/input/<jaw>/bone/<jaw>.<ext>               jaw = mandible | maxilla, ext = stl|obj|ply|off
+//   <case>/input/<jaw>/teeth/tooth_<UNN>.<ext>        one file per tooth (UNN 1..16 maxilla, 17..32 mandible)
+//   <case>/input/<jaw>/teeth/all_teeth.obj            alternative: every tooth as a connected component
+//                                                     (also accepted directly in <case>/input/<jaw>/)
+//   <case>/input/<jaw>/teeth_axes_<jaw>.json          optional tooth axes
+// discoverCase() only looks at names; loadJaw() reads the surfaces, checks the units and numbers
+// the teeth of an all_teeth.obj along the arch.
+#pragma once
+
+#include "io/Labels.h"
+#include "io/Progress.h"
+#include "io/SurfaceMesh.h"
+#include "io/ToothAxes.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace jawmesh {
+
+/// The files of one jaw of a case.
+struct JawCase {
+    Jaw jaw = Jaw::Mandible;
+    std::string bonePath;                  ///< input/<jaw>/bone/<jaw>.<ext>
+    std::map<int, std::string> toothPaths; ///< UNN -> tooth file; empty when teethFromAllTeethObj
+    std::string axesPath;                  ///< teeth_axes_<jaw>.json, empty when absent
+    bool teethFromAllTeethObj = false;     ///< teeth come from one all_teeth.obj (numbered at load)
+    std::string allTeethPath;              ///< that all_teeth.obj, empty otherwise
+};
+
+/// Every jaw found in a case folder (mandible first).
+struct CaseInfo {
+    std::string root;            ///< the case folder as given
+    std::vector<JawCase> jaws;   ///< at least one
+};
+
+/// Finds the jaws of a case folder by file names only (no file is read).
+/// Throws Error(path, reason) when: the folder is missing, it has no input/ folder, input/ has no
+/// mandible/ or maxilla/ folder, a jaw has no bone file or several (mandible.stl and mandible.obj),
+/// a jaw has no teeth, a tooth file name is not tooth_<UNN>.<ext>, a UNN is outside 1..32 or belongs
+/// to the other jaw, a UNN appears twice (tooth_24.stl and tooth_24.obj), or a jaw has both
+/// tooth_<UNN> files and an all_teeth.obj. Cost: a few directory listings.
+CaseInfo discoverCase(const std::string& caseDir);
+
+struct LoadOptions {
+    /// 0: automatic (coordinates must already be millimetres; a bounding-box diagonal below 1 or
+    /// above 1000 is refused). > 0: every coordinate (and tooth crown centre) is multiplied by it
+    /// and the unit check is skipped.
+    double scale = 0.0;
+};
+
+/// The surfaces of one jaw, in millimetres.
+struct JawSurfaces {
+    Jaw jaw = Jaw::Mandible;
+    SurfaceMesh bone;
+    std::map<int, SurfaceMesh> teeth;     ///< by UNN
+    std::map<int, ToothAxes> axes;        ///< by UNN; empty without an axes file
+    std::vector<std::string> notes;       ///< things a person should know (numbering used, scaling, ...)
+};
+
+/// Reads every surface of a jaw (in parallel, TBB) and its axes; splits and numbers an all_teeth.obj
+/// with numberTeethAlongArch(); applies LoadOptions::scale or the unit check.
+/// Throws Error naming the file for unreadable or malformed files, for a case that does not look
+/// like millimetres (with a hint to pass a scale), and for a negative or non-finite scale; Cancelled
+/// when progress is cancelled. Cost: dominated by reading (about 0.1-0.4 s per million triangles).
+JawSurfaces loadJaw(const JawCase& jawCase, const LoadOptions& options = {}, Progress& progress = noProgress());
+
+/// Splits a mesh holding several teeth into teeth and gives each its UNN by position along the arch.
+/// Rule: components are triangles connected through shared vertices (positions welded first);
+/// a component whose bounding box lies inside another's (a pulp shell) joins that one; components
+/// whose bounding-box diagonal is below 20% of the median component's are specks and are dropped
+/// (noted). The occlusal plane is the
+/// least-squares plane of the tooth centroids; the occlusal side is where the crowns stick out of
+/// the bone (tooth centroid versus the bone vertices around it), or +z (mandible) / -z (maxilla)
+/// when no bone is near. Teeth are ordered by angle around the mean centroid, the arch's open end
+/// at the largest angular gap; anterior points from the middle of the two end teeth to the mean
+/// centroid, patient-left = superior x anterior. The midline lies between the two adjacent teeth
+/// whose midpoint is most anterior (the central incisors), and each side is numbered outward
+/// from it: mandible left 24, 23, ... 17 and right 25, 26, ... 32; maxilla right 8, 7, ... 1 and
+/// left 9, 10, ... 16 (so missing teeth are assumed at the back of the arch).
+/// @param allTeeth  the combined teeth, mm
+/// @param jaw       which numbering to use
+/// @param bone      the jaw's bone (may be empty), used only to tell crowns from roots
+/// @param notes     receives one line describing the numbering (may be null)
+/// Throws Error when there is no component or more than 8 teeth on one side. Cost: O(n log n).
+std::map<int, SurfaceMesh> numberTeethAlongArch(const SurfaceMesh& allTeeth, Jaw jaw, const SurfaceMesh& bone,
+                                                std::vector<std::string>* notes = nullptr);
+
+}  // namespace jawmesh

@@ -1,0 +1,36 @@
+// TetGen input files for an InterfaceComplex: .poly / .smesh (nodes, triangular facets with a
+// boundary marker coding the label pair, region list from the seeds), plus each region's boundary
+// as its own surface file for inspection.
+#pragma once
+
+#include "io/InterfaceComplex.h"
+
+#include <array>
+#include <string>
+
+namespace jawmesh {
+
+/// Facet marker of the interface between labels a and b (order-free): 1000 * min + max, so
+/// bone_mandible/outside is 1, tooth_24/pdl_24 is 124224. Always > 0 (0 means "none" to TetGen).
+int interfaceMarker(Label a, Label b);
+
+/// The label pair {min, max} of a marker from interfaceMarker().
+std::array<Label, 2> interfaceFromMarker(int marker);
+
+/// Writes `complex` for TetGen: ".poly" (part 1 nodes, part 2 one single-polygon facet per
+/// triangle with its marker, part 3 no holes, part 4 one region per seed: point and label as the
+/// region attribute, no volume constraint) or ".smesh" (same content, the smesh layout), chosen by
+/// the extension. Indices are 1-based. Written atomically.
+/// Throws Error on I/O failure, another extension, or sides / triangles of different lengths.
+void writeTetgenPoly(const InterfaceComplex& complex, const std::string& path);
+
+/// Writes one surface per region label in `complex` (outside excepted) to
+/// "<folder>/<labelName>.<ext>" (ext "ply", "stl" or "obj"): the triangles bounding the region,
+/// oriented outward from it, with unused vertices dropped. Throws Error on I/O failure.
+void writeRegionBoundaries(const InterfaceComplex& complex, const std::string& folder,
+                           const std::string& ext = "ply");
+
+/// The boundary of region `label` in `complex`, oriented outward, unused vertices dropped.
+SurfaceMesh regionBoundary(const InterfaceComplex& complex, Label label);
+
+}  // namespace jawmesh

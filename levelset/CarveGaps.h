@@ -1,0 +1,100 @@
+// Gap carving for one jaw, all teeth at once: bone and tooth level sets in, the labelled field of
+// bone, teeth and periodontal ligaments (PDL) out (levelset/LabelField.h).
+//
+// Rules (per tooth i; T = tooth distance, B = bone distance, mm, negative inside; t = PDL thickness
+// at the point, e = ratio * t root erosion, w = t - e socket widening):
+//  * Socket. A point is "in the socket" of tooth i when bone is within e (B < e) or when it lies in
+//    a thin gap that the segmentation left between root and socket: T + B < gapBridge with the
+//    tooth and bone surfaces facing each other (grad T . grad B < -cos 45deg). For two parallel
+//    surfaces a distance g apart, T + B = g at every point between and inside, so the test bridges
+//    gaps up to gapBridge (default 0.5 mm; the real data has up to 0.45 mm at the cervical rim)
+//    without touching the crown above a crest where bone turns away at more than 45 degrees.
+//  * Tooth i keeps T <= -e, and T <= 0 outside the socket: only the root is eroded, the crown keeps
+//    its input shape exactly.
+//  * PDL i = {-e < T < w} inside the socket. Its top (the cap) is therefore the surface {B = e},
+//    an offset of the bone surface: smooth, no steps, nothing to tune per tooth.
+//  * Bone = (bone ∪ bridged gaps) outside {T_j < w} for every tooth j: teeth win overlaps, bone
+//    and tooth meet only through the PDL, and the PDL stays t thick where the gap is wider than w
+//    (the rest of the gap becomes bone, so there is no void between PDL and socket).
+//  * Clearance: tooth i and its PDL keep only points where T_i - T_j < -clearance for every other
+//    tooth j (split on the bisector); a final discrete pass removes the rare 26-neighbour contacts
+//    left on diagonals.
+// The distance grid of every region is the corresponding min/max combination of the input fields
+// (exact zero set, true distance away from the creases), so it is consistent with the labels.
+#pragma once
+
+#include "io/Labels.h"
+#include "io/Progress.h"
+#include "io/ToothAxes.h"
+#include "levelset/LabelField.h"
+
+#include <openvdb/openvdb.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace jawmesh {
+
+/// PDL thickness along the root: linear from the cervical end (at the alveolar crest) to mid-root
+/// and from mid-root to the apex, measured along the tooth's long axis. mm.
+struct PdlProfile {
+    double cervical = 0.2, midRoot = 0.2, apical = 0.2;
+};
+
+struct CarveOptions {
+    double pdlThicknessMm = 0.2;        ///< uniform PDL thickness (ignored when profile is set)
+    double pdlRatio = 0.5;              ///< share of the thickness taken from the root (erosion), [0, 1]
+    std::optional<PdlProfile> profile;  ///< thickness along the root instead of a uniform value
+    double clearanceVoxels = 1.0;       ///< gap between different teeth / PDLs, voxels
+    double gapBridgeMm = 0.5;           ///< widest root-socket gap bridged (see file comment)
+    double capExclusionMm = 0.3;        ///< thickness statistics ignore points this close to the outside
+    std::map<int, ToothAxes> axes;      ///< optional tooth axes (long axis for the profile)
+};
+
+struct ThicknessStats {
+    std::size_t samples = 0;
+    double min = 0, p05 = 0, mean = 0, p95 = 0, max = 0;  ///< mm
+};
+
+struct ToothCarveSummary {
+    int unn = 0;
+    double toothVolumeMm3 = 0;   ///< carved tooth
+    double pdlVolumeMm3 = 0;
+    double rootAreaFraction = 0; ///< root/crown split: share of the carved tooth's surface facing its PDL
+    bool impacted = false;       ///< PDL forms a closed envelope (no PDL face to the outside)
+    ThicknessStats thickness;    ///< tooth-side PDL interface to bone-side interface, cap excluded
+};
+
+struct CarveSummary {
+    double voxelSizeMm = 0;
+    std::vector<ToothCarveSummary> teeth;
+    std::size_t clearanceVoxelsRemoved = 0;  ///< voxels dropped by the discrete 26-neighbour pass
+    std::size_t toothBoneContacts = 0;       ///< tooth voxels 26-adjacent to bone (should be 0)
+    std::vector<std::string> warnings;
+    double seconds = 0;
+};
+
+/// Carves the PDL of every tooth and labels the jaw (see the file comment for the rules).
+/// @param jaw      which bone label to use
+/// @param bone     bone level set (any band >= 1 voxel; grids are widened locally as needed)
+/// @param teeth    UNN -> tooth level set; all grids on one transform (meshToLevelSet with one
+///                 voxel size); not modified
+/// @param options  thickness, ratio, profile, clearance (CarveOptions)
+/// @param summary  filled: per-tooth volumes, thickness statistics, warnings (e.g. a tooth without
+///                 bone contact gets no PDL)
+/// @throws Error for mismatched transforms, invalid UNNs or options, a voxel too coarse for the PDL
+///         (fewer than 2 voxels across); Cancelled when progress is cancelled.
+/// Deterministic regardless of the thread count. Cost: per tooth one re-normalisation of the
+/// tooth band and one unsigned distance to the nearby bone surface (TBB), then one pass over the
+/// voxels near the teeth; memory of the order of the bone grid plus ~20 bytes per voxel within
+/// gapBridge of a tooth.
+LabelField carveJaw(Jaw jaw, const openvdb::FloatGrid& bone,
+                    const std::map<int, openvdb::FloatGrid::ConstPtr>& teeth, const CarveOptions& options,
+                    CarveSummary& summary, Progress& progress = noProgress());
+
+/// PDL thickness (mm) at relative root position s (0 cervical, 0.5 mid-root, 1 apex), clamped.
+double pdlThicknessAt(const PdlProfile& profile, double s);
+
+}  // namespace jawmesh

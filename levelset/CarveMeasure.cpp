@@ -1,0 +1,182 @@
+#include "levelset/CarveMeasure.h"
+
+#include "io/Error.h"
+
+#include <tbb/parallel_for.h>
+
+#include <openvdb/tree/LeafManager.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+namespace jawmesh {
+namespace {
+
+using openvdb::Coord;
+using openvdb::Vec3d;
+
+const Coord kFace[6] = {Coord(1, 0, 0), Coord(-1, 0, 0), Coord(0, 1, 0), Coord(0, -1, 0), Coord(0, 0, 1), Coord(0, 0, -1)};
+
+/// Points bucketed in cubic cells for nearest-point queries.
+class PointHash {
+public:
+    PointHash(std::vector<Vec3d> points, double cell) : points_(std::move(points)), cell_(cell) {
+        for (std::size_t i = 0; i < points_.size(); ++i) cells_[key(cellOf(points_[i]))].push_back(std::uint32_t(i));
+    }
+    bool empty() const { return points_.empty(); }
+    /// Distance to the nearest point, or +inf when none is within maxDist.
+    double nearest(const Vec3d& p, double maxDist) const {
+        if (points_.empty()) return std::numeric_limits<double>::infinity();
+        const Coord c = cellOf(p);
+        double best2 = maxDist * maxDist;
+        const int rings = int(std::ceil(maxDist / cell_));
+        for (int r = 0; r <= rings; ++r) {
+            // Every point in ring r is at least (r - 1) * cell away.
+            if (r >= 1 && double(r - 1) * cell_ * double(r - 1) * cell_ > best2) break;
+            for (int i = -r; i <= r; ++i)
+                for (int j = -r; j <= r; ++j)
+                    for (int k = -r; k <= r; ++k) {
+                        if (std::max({std::abs(i), std::abs(j), std::abs(k)}) != r) continue;
+                        const auto it = cells_.find(key(c.offsetBy(i, j, k)));
+                        if (it == cells_.end()) continue;
+                        for (const auto idx : it->second) best2 = std::min(best2, (points_[idx] - p).lengthSqr());
+                    }
+        }
+        return best2 < maxDist * maxDist ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
+    }
+
+private:
+    Coord cellOf(const Vec3d& p) const {
+        return Coord(int(std::floor(p[0] / cell_)), int(std::floor(p[1] / cell_)), int(std::floor(p[2] / cell_)));
+    }
+    static std::uint64_t key(const Coord& c) {
+        return (std::uint64_t(std::uint32_t(c[0]) & 0x1FFFFF) << 42) | (std::uint64_t(std::uint32_t(c[1]) & 0x1FFFFF) << 21) |
+               std::uint64_t(std::uint32_t(c[2]) & 0x1FFFFF);
+    }
+    std::vector<Vec3d> points_;
+    double cell_;
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
+/// Zero crossing of `dist` between voxel centres a and b (world), or the midpoint.
+Vec3d crossing(const openvdb::FloatGrid* dist, const openvdb::math::Transform& xf, const Coord& a, const Coord& b) {
+    const Vec3d pa = xf.indexToWorld(a), pb = xf.indexToWorld(b);
+    if (dist) {
+        const float fa = dist->tree().getValue(a), fb = dist->tree().getValue(b);
+        if ((fa < 0) != (fb < 0) && fa != fb) {
+            const double t = std::clamp(double(fa) / double(fa - fb), 0.0, 1.0);
+            return pa + (pb - pa) * t;
+        }
+    }
+    return (pa + pb) * 0.5;
+}
+
+double percentile(const std::vector<double>& sorted, double q) {
+    if (sorted.empty()) return 0;
+    const double pos = q * double(sorted.size() - 1);
+    const std::size_t i = std::size_t(pos);
+    const double f = pos - double(i);
+    return i + 1 < sorted.size() ? sorted[i] * (1 - f) + sorted[i + 1] * f : sorted[i];
+}
+
+}  // namespace
+
+void measureTooth(const LabelField& field, int unn, double capExclusionMm, ToothCarveSummary& out) {
+    if (!field.labels) throw Error("measureTooth: label field without labels");
+    const Label toothL = toothLabel(unn), pdlL = pdlLabel(unn), boneL = boneLabel(field.jaw);
+    const auto& labels = *field.labels;
+    const auto& xf = labels.transform();
+    const double voxel = xf.voxelSize()[0];
+    const double voxel3 = voxel * voxel * voxel;
+    auto find = [&](Label l) -> const openvdb::FloatGrid* {
+        const auto it = field.distances.find(l);
+        return it == field.distances.end() ? nullptr : it->second.get();
+    };
+    const openvdb::FloatGrid* toothDist = find(toothL);
+    const openvdb::FloatGrid* boneDist = find(boneL);
+
+    // Volumes: tiles count their whole extent.
+    std::size_t toothVoxels = 0, pdlVoxels = 0;
+    for (auto it = labels.tree().cbeginValueOn(); it; ++it) {
+        const Label l = *it;
+        if (l != toothL && l != pdlL) continue;
+        const std::size_t n = it.isVoxelValue() ? 1 : std::size_t(it.getBoundingBox().volume());
+        (l == toothL ? toothVoxels : pdlVoxels) += n;
+    }
+    out.toothVolumeMm3 = double(toothVoxels) * voxel3;
+    out.pdlVolumeMm3 = double(pdlVoxels) * voxel3;
+
+    // Interface points, collected per leaf and concatenated in leaf order (deterministic).
+    openvdb::tree::LeafManager<const openvdb::Int32Tree> leaves(labels.tree());
+    const std::size_t n = leaves.leafCount();
+    std::vector<std::vector<Vec3d>> toothSide(n), boneSide(n), openSide(n);
+    std::vector<std::size_t> rootFaces(n, 0), toothFaces(n, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+        auto acc = labels.getConstAccessor();
+        for (std::size_t li = r.begin(); li != r.end(); ++li) {
+            const auto& leaf = leaves.leaf(li);
+            for (auto v = leaf.cbeginValueOn(); v; ++v) {
+                const Label l = *v;
+                if (l != toothL && l != pdlL) continue;
+                const Coord p = v.getCoord();
+                for (const auto& d : kFace) {
+                    const Coord q = p + d;
+                    const Label m = acc.getValue(q);
+                    if (l == toothL) {
+                        if (m == toothL) continue;
+                        ++toothFaces[li];
+                        if (m == pdlL) {
+                            ++rootFaces[li];
+                            toothSide[li].push_back(crossing(toothDist, xf, p, q));
+                        }
+                    } else if (m == boneL) {
+                        boneSide[li].push_back(crossing(boneDist, xf, q, p));
+                    } else if (m != toothL && m != pdlL) {
+                        openSide[li].push_back((xf.indexToWorld(p) + xf.indexToWorld(q)) * 0.5);
+                    }
+                }
+            }
+        }
+    });
+    auto flatten = [](std::vector<std::vector<Vec3d>>& parts) {
+        std::vector<Vec3d> all;
+        for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+        return all;
+    };
+    std::size_t rf = 0, tf = 0;
+    for (std::size_t i = 0; i < n; ++i) rf += rootFaces[i], tf += toothFaces[i];
+    out.rootAreaFraction = tf ? double(rf) / double(tf) : 0.0;
+    const auto toothPts = flatten(toothSide);
+    const PointHash bonePts(flatten(boneSide), 0.25);
+    const PointHash openPts(flatten(openSide), 0.25);
+    out.impacted = pdlVoxels > 0 && openPts.empty();
+
+    std::vector<double> t(toothPts.size(), -1.0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, toothPts.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            if (openPts.nearest(toothPts[i], capExclusionMm) < capExclusionMm) continue;
+            const double d = bonePts.nearest(toothPts[i], 2.0);
+            if (std::isfinite(d)) t[i] = d;
+        }
+    });
+    t.erase(std::remove(t.begin(), t.end(), -1.0), t.end());
+    std::sort(t.begin(), t.end());
+    ThicknessStats s;
+    s.samples = t.size();
+    if (!t.empty()) {
+        double sum = 0;
+        for (double x : t) sum += x;
+        s.min = t.front();
+        s.max = t.back();
+        s.mean = sum / double(t.size());
+        s.p05 = percentile(t, 0.05);
+        s.p95 = percentile(t, 0.95);
+    }
+    out.thickness = s;
+}
+
+}  // namespace jawmesh

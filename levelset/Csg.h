@@ -1,0 +1,68 @@
+// Boolean and morphological operations on narrow-band level sets (openvdb::FloatGrid, mm, negative
+// inside). Every function takes its inputs by const reference and returns a new grid: inputs are
+// never modified or emptied (unlike openvdb::tools::csgUnion, which empties its second argument).
+// All grids involved must share one transform (same voxel size and origin); otherwise Error.
+//
+// Accuracy: union / intersection / difference are min / max of the inputs, exact on the zero set
+// and equal to the true signed distance away from creases. offset / close / open / renormalize
+// rebuild the band from the iso-surface (OpenVDB's volume -> mesh -> exact distance, i.e. the
+// "sdf -> surface -> sdf" route), so their values are true distances to the marching-cubes surface
+// (errors a few hundredths of a voxel on smooth shapes), whatever the width of the input band.
+#pragma once
+
+#include "io/Progress.h"
+
+#include <openvdb/openvdb.h>
+
+namespace jawmesh {
+
+/// Union a ∪ b (min of the two fields) as a new grid with a's transform and background.
+/// Throws Error if the transforms differ. Cost: linear in the active voxels of a and b.
+openvdb::FloatGrid::Ptr csgUnion(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b);
+
+/// Intersection a ∩ b (max of the two fields) as a new grid. Same contract as csgUnion.
+openvdb::FloatGrid::Ptr csgIntersection(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b);
+
+/// Difference a \ b (max(a, -b)) as a new grid. Same contract as csgUnion.
+openvdb::FloatGrid::Ptr csgDifference(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b);
+
+/// Re-normalises a level set: a new grid holding the true signed distance (mm) to the zero
+/// iso-surface of `grid`, in a band of `exteriorHalfWidthVoxels` outside and
+/// `interiorHalfWidthVoxels` inside (also how a band is widened). Interior is marked by negative
+/// inactive tiles as usual. Throws Error for a grid that is not a level set on a uniform transform.
+/// Cost: one polygonisation + one exact mesh-to-distance pass over the band (TBB); memory of the
+/// order of the output band.
+openvdb::FloatGrid::Ptr renormalizeLevelSet(const openvdb::FloatGrid& grid,
+                                            double exteriorHalfWidthVoxels = 3.0,
+                                            double interiorHalfWidthVoxels = 3.0,
+                                            Progress& progress = noProgress());
+
+/// Offsets a level set by distanceMm: positive dilates (the surface moves outward), negative
+/// erodes. The input band may be narrower than |distanceMm|: it is widened first. The result is
+/// a true signed distance field with the given half width on each side.
+/// Throws Error for a non-finite distance or mismatched grids. Cost: one or two re-normalisations.
+openvdb::FloatGrid::Ptr offsetLevelSet(const openvdb::FloatGrid& grid, double distanceMm,
+                                       double halfWidthVoxels = 3.0,
+                                       Progress& progress = noProgress());
+
+/// Morphological closing by a ball of radiusMm (dilate then erode): fills gaps, pits and concave
+/// corners narrower than 2 * radiusMm; convex parts are unchanged. Cost: two offsets.
+openvdb::FloatGrid::Ptr closeLevelSet(const openvdb::FloatGrid& grid, double radiusMm,
+                                      double halfWidthVoxels = 3.0, Progress& progress = noProgress());
+
+/// Morphological opening by a ball of radiusMm (erode then dilate): removes spikes, thin plates
+/// and bridges thinner than 2 * radiusMm. Cost: two offsets.
+openvdb::FloatGrid::Ptr openLevelSet(const openvdb::FloatGrid& grid, double radiusMm,
+                                     double halfWidthVoxels = 3.0, Progress& progress = noProgress());
+
+/// Half width of the band of a level set in mm (its background value). Throws Error when the grid
+/// has a non-positive background (not a level set).
+double bandHalfWidthMm(const openvdb::FloatGrid& grid);
+
+/// Voxel size (mm) of a grid on a uniform linear transform; throws Error otherwise.
+double uniformVoxelSizeMm(const openvdb::FloatGrid& grid);
+
+/// Throws Error("<what>: ...") unless a and b share one transform.
+void requireSameTransform(const openvdb::GridBase& a, const openvdb::GridBase& b, const char* what);
+
+}  // namespace jawmesh

@@ -1,0 +1,80 @@
+#include "levelset/LabelFieldIO.h"
+
+#include "io/AtomicFile.h"
+#include "io/Error.h"
+
+#include <openvdb/io/File.h>
+
+#include <filesystem>
+
+namespace jawmesh {
+namespace {
+
+void writeGrid(openvdb::GridBase::Ptr grid, const std::string& path) {
+    writeFileAtomicallyByName(path, [&](const std::string& tmp) {
+        openvdb::io::File file(tmp);
+        file.write(openvdb::GridPtrVec{grid});
+        file.close();
+    });
+}
+
+openvdb::GridBase::Ptr readOnlyGrid(const std::string& path) {
+    try {
+        openvdb::io::File file(path);
+        file.open();
+        auto grids = file.getGrids();
+        file.close();
+        if (!grids || grids->size() != 1) throw Error(path, "expected exactly one grid");
+        return grids->front();
+    } catch (const openvdb::Exception& e) {
+        throw Error(path, std::string("cannot read OpenVDB file: ") + e.what());
+    }
+}
+
+}  // namespace
+
+void writeLabelField(const LabelField& field, const std::string& dir) {
+    if (!field.labels) throw Error(dir, "label field has no label grid");
+    openvdb::initialize();
+    std::filesystem::create_directories(dir);
+    // Shallow copies carry the metadata so the caller's grids stay untouched.
+    auto labels = field.labels->copyGrid();
+    labels->setName("labels");
+    labels->insertMeta("jaw", openvdb::StringMetadata(jawName(field.jaw)));
+    labels->insertMeta("voxel_size_mm", openvdb::DoubleMetadata(field.voxelSizeMm));
+    writeGrid(labels, dir + "/labels.vdb");
+    for (const auto& [label, grid] : field.distances) {
+        if (!grid) continue;
+        auto g = grid->copyGrid();
+        g->setName(labelName(label));
+        g->insertMeta("label", openvdb::Int32Metadata(label));
+        writeGrid(g, dir + "/" + labelName(label) + ".vdb");
+    }
+}
+
+LabelField readLabelField(const std::string& dir) {
+    openvdb::initialize();
+    const std::string labelsPath = dir + "/labels.vdb";
+    if (!std::filesystem::exists(labelsPath)) throw Error(labelsPath, "missing (not a carved label field folder)");
+    LabelField field;
+    field.labels = openvdb::gridPtrCast<openvdb::Int32Grid>(readOnlyGrid(labelsPath));
+    if (!field.labels) throw Error(labelsPath, "label grid is not an Int32 grid");
+    if (auto jaw = field.labels->getMetadata<openvdb::StringMetadata>("jaw")) field.jaw = jawFromName(jaw->value());
+    field.voxelSizeMm = field.labels->voxelSize()[0];
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        const auto path = entry.path();
+        if (path.extension() != ".vdb" || path.filename() == "labels.vdb") continue;
+        auto base = readOnlyGrid(path.string());
+        auto label = base->getMetadata<openvdb::Int32Metadata>("label");
+        if (!label) continue;
+        auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+        if (!grid) throw Error(path.string(), "region distance is not a float grid");
+        if (grid->transform() != field.labels->transform())
+            throw Error(path.string(), "transform differs from labels.vdb");
+        labelKind(label->value());  // throws for unknown labels
+        field.distances[label->value()] = grid;
+    }
+    return field;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,238 @@
+#include "levelset/OrientSurface.h"
+
+#include "levelset/LineWinding.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <numeric>
+
+namespace jawmesh {
+
+namespace {
+using Index = std::int32_t;
+
+bool lessPosition(const Vec3& a, const Vec3& b) {
+    if (a.x() != b.x()) return a.x() < b.x();
+    if (a.y() != b.y()) return a.y() < b.y();
+    return a.z() < b.z();
+}
+
+// Merges bitwise-equal positions; returns the new index of every input vertex.
+std::vector<Index> weldVertices(const std::vector<Vec3>& in, std::vector<Vec3>& out) {
+    std::vector<Index> order(in.size());
+    std::iota(order.begin(), order.end(), 0);
+    tbb::parallel_sort(order.begin(), order.end(), [&](Index a, Index b) {
+        const Vec3& pa = in[static_cast<std::size_t>(a)];
+        const Vec3& pb = in[static_cast<std::size_t>(b)];
+        if (lessPosition(pa, pb)) return true;
+        if (lessPosition(pb, pa)) return false;
+        return a < b;
+    });
+    std::vector<Index> remap(in.size());
+    out.clear();
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        const Vec3& p = in[static_cast<std::size_t>(order[i])];
+        if (i == 0 || p != in[static_cast<std::size_t>(order[i - 1])]) out.push_back(p);
+        remap[static_cast<std::size_t>(order[i])] = static_cast<Index>(out.size() - 1);
+    }
+    return remap;
+}
+
+struct HalfEdge {
+    std::uint64_t key;  // (min vertex << 32) | max vertex
+    Index tri;
+    std::int8_t corner;
+    bool forward;  // the triangle walks the edge from min to max
+};
+
+struct PatchSummary {
+    double keptArea = 0.0;     // area of triangles whose input orientation survives
+    double flippedArea = 0.0;  // area of triangles that the consistent orientation reverses
+    Index largest = -1;
+    double largestArea = -1.0;
+    Index size = 0;
+};
+
+double triangleArea(const std::vector<Vec3>& v, const Tri& t) {
+    return 0.5 * (v[static_cast<std::size_t>(t[1])] - v[static_cast<std::size_t>(t[0])])
+                     .cross(v[static_cast<std::size_t>(t[2])] - v[static_cast<std::size_t>(t[0])])
+                     .norm();
+}
+}  // namespace
+
+OrientedSurface orientSurface(const SurfaceMesh& mesh, Progress& progress) {
+    OrientedSurface out;
+    const std::vector<Index> remap = weldVertices(mesh.vertices, out.vertices);
+    progress.checkCancelled();
+
+    // Drop degenerate triangles, then duplicates (same vertex set; the first one is kept).
+    const BBox box = boundingBox(mesh);
+    const double scale = box.empty() ? 1.0 : std::max(box.size().maxCoeff(), 1e-9);
+    const double minDoubleArea = 1e-14 * scale * scale;
+    std::vector<Tri> tris;
+    tris.reserve(mesh.triangles.size());
+    for (const Tri& t : mesh.triangles) {
+        const Tri w = {remap[static_cast<std::size_t>(t[0])], remap[static_cast<std::size_t>(t[1])],
+                       remap[static_cast<std::size_t>(t[2])]};
+        if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2] || 2.0 * triangleArea(out.vertices, w) <= minDoubleArea) {
+            ++out.droppedDegenerate;
+            continue;
+        }
+        tris.push_back(w);
+    }
+    {
+        std::vector<Index> order(tris.size());
+        std::iota(order.begin(), order.end(), 0);
+        auto sortedKey = [&](Index i) {
+            Tri k = tris[static_cast<std::size_t>(i)];
+            std::sort(k.begin(), k.end());
+            return k;
+        };
+        tbb::parallel_sort(order.begin(), order.end(), [&](Index a, Index b) {
+            const Tri ka = sortedKey(a), kb = sortedKey(b);
+            return ka < kb || (ka == kb && a < b);
+        });
+        std::vector<char> keep(tris.size(), 1);
+        for (std::size_t i = 1; i < order.size(); ++i)
+            if (sortedKey(order[i]) == sortedKey(order[i - 1])) keep[static_cast<std::size_t>(order[i])] = 0;
+        for (std::size_t i = 0; i < tris.size(); ++i) {
+            if (keep[i]) out.triangles.push_back(tris[i]);
+            else ++out.droppedDuplicate;
+        }
+    }
+    progress.checkCancelled();
+    const std::size_t n = out.triangles.size();
+
+    // Manifold adjacency: an edge with exactly two triangles links them.
+    std::vector<HalfEdge> edges(3 * n);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t t) {
+        for (int c = 0; c < 3; ++c) {
+            const auto a = static_cast<std::uint32_t>(out.triangles[t][c]);
+            const auto b = static_cast<std::uint32_t>(out.triangles[t][(c + 1) % 3]);
+            const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+            edges[3 * t + c] = {key, static_cast<Index>(t), static_cast<std::int8_t>(c), a < b};
+        }
+    });
+    tbb::parallel_sort(edges.begin(), edges.end(), [](const HalfEdge& a, const HalfEdge& b) {
+        return a.key < b.key || (a.key == b.key && (a.tri < b.tri || (a.tri == b.tri && a.corner < b.corner)));
+    });
+    // neighbour[3t+c] = other triangle across edge c (or -1); sameWalk: both walk it the same way.
+    std::vector<Index> neighbour(3 * n, -1);
+    std::vector<char> sameWalk(3 * n, 0);
+    for (std::size_t i = 0; i < edges.size();) {
+        std::size_t j = i;
+        while (j < edges.size() && edges[j].key == edges[i].key) ++j;
+        if (j - i == 2 && edges[i].tri != edges[i + 1].tri) {
+            const HalfEdge& a = edges[i];
+            const HalfEdge& b = edges[i + 1];
+            neighbour[3 * static_cast<std::size_t>(a.tri) + a.corner] = b.tri;
+            neighbour[3 * static_cast<std::size_t>(b.tri) + b.corner] = a.tri;
+            sameWalk[3 * static_cast<std::size_t>(a.tri) + a.corner] = a.forward == b.forward;
+            sameWalk[3 * static_cast<std::size_t>(b.tri) + b.corner] = a.forward == b.forward;
+        }
+        i = j;
+    }
+    edges.clear();
+    edges.shrink_to_fit();
+    progress.checkCancelled();
+
+    // Breadth-first propagation of a flip flag through manifold edges, patch by patch.
+    out.patch.assign(n, -1);
+    std::vector<char> flip(n, 0);
+    std::vector<PatchSummary> summary;
+    std::deque<Index> queue;
+    for (std::size_t seed = 0; seed < n; ++seed) {
+        if (out.patch[seed] >= 0) continue;
+        const Index id = static_cast<Index>(summary.size());
+        summary.emplace_back();
+        out.patch[seed] = id;
+        queue.push_back(static_cast<Index>(seed));
+        while (!queue.empty()) {
+            const auto t = static_cast<std::size_t>(queue.front());
+            queue.pop_front();
+            PatchSummary& s = summary.back();
+            const double area = triangleArea(out.vertices, out.triangles[t]);
+            (flip[t] ? s.flippedArea : s.keptArea) += area;
+            if (area > s.largestArea) {
+                s.largestArea = area;
+                s.largest = static_cast<Index>(t);
+            }
+            ++s.size;
+            for (int c = 0; c < 3; ++c) {
+                const Index nb = neighbour[3 * t + c];
+                if (nb < 0 || out.patch[static_cast<std::size_t>(nb)] >= 0) continue;
+                out.patch[static_cast<std::size_t>(nb)] = id;
+                flip[static_cast<std::size_t>(nb)] = sameWalk[3 * t + c] ? !flip[t] : flip[t];
+                queue.push_back(nb);
+            }
+        }
+    }
+    out.patchCount = static_cast<int>(summary.size());
+    // Majority of the input orientation, by area.
+    std::vector<char> invertPatch(summary.size(), 0);
+    for (std::size_t p = 0; p < summary.size(); ++p) invertPatch[p] = summary[p].flippedArea > summary[p].keptArea;
+    for (std::size_t t = 0; t < n; ++t)
+        if (invertPatch[static_cast<std::size_t>(out.patch[t])]) flip[t] = !flip[t];
+    progress.checkCancelled();
+
+    // Which patches lie inside others (judged with the majority orientation of the others).
+    std::vector<char> nested(summary.size(), 0);
+    constexpr Index kMinPatchForNesting = 16;
+    if (summary.size() > 1) {
+        LineWindingQuery query(out.vertices, out.triangles, out.patch);
+        std::vector<std::int8_t> sign(n);
+        for (std::size_t t = 0; t < n; ++t) sign[t] = flip[t] ? -1 : 1;
+        query.setOrientation(std::move(sign));
+        tbb::parallel_for(std::size_t(0), summary.size(), [&](std::size_t p) {
+            if (summary[p].size < kMinPatchForNesting) return;
+            const Tri& t = out.triangles[static_cast<std::size_t>(summary[p].largest)];
+            const Vec3 q = (out.vertices[static_cast<std::size_t>(t[0])] + out.vertices[static_cast<std::size_t>(t[1])] +
+                            out.vertices[static_cast<std::size_t>(t[2])]) / 3.0;
+            int inside = 0, outside = 0;
+            for (int k = 0; k < 7 && inside < 3 && outside < 3; ++k) {
+                const auto w = query.windingAlongLine(q, LineWindingQuery::genericDirection(k), static_cast<Index>(p));
+                if (!w) continue;
+                (*w != 0 ? inside : outside) += 1;
+            }
+            nested[p] = inside > outside;
+        });
+    }
+    progress.checkCancelled();
+
+    // Outermost patches point outward: positive signed volume about the patch's own centre.
+    std::vector<Vec3> centre(summary.size(), Vec3::Zero());
+    {
+        std::vector<BBox> boxes(summary.size());
+        for (std::size_t t = 0; t < n; ++t)
+            for (Index v : out.triangles[t]) boxes[static_cast<std::size_t>(out.patch[t])].extend(out.vertices[static_cast<std::size_t>(v)]);
+        for (std::size_t p = 0; p < summary.size(); ++p) centre[p] = 0.5 * (boxes[p].min + boxes[p].max);
+    }
+    std::vector<double> volume(summary.size(), 0.0);
+    for (std::size_t t = 0; t < n; ++t) {
+        const auto p = static_cast<std::size_t>(out.patch[t]);
+        const Tri& tri = out.triangles[t];
+        const Vec3 a = out.vertices[static_cast<std::size_t>(tri[0])] - centre[p];
+        const Vec3 b = out.vertices[static_cast<std::size_t>(tri[1])] - centre[p];
+        const Vec3 c = out.vertices[static_cast<std::size_t>(tri[2])] - centre[p];
+        volume[p] += (flip[t] ? -1.0 : 1.0) * a.dot(b.cross(c));
+    }
+    for (std::size_t p = 0; p < summary.size(); ++p) {
+        if (nested[p]) ++out.nestedPatches;
+        invertPatch[p] = !nested[p] && volume[p] < 0.0;
+    }
+    for (std::size_t t = 0; t < n; ++t) {
+        if (invertPatch[static_cast<std::size_t>(out.patch[t])]) flip[t] = !flip[t];
+        if (flip[t]) {
+            std::swap(out.triangles[t][1], out.triangles[t][2]);
+            ++out.flipped;
+        }
+    }
+    return out;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,195 @@
+// Interface extraction on synthetic label fields: closed, manifold region boundaries, correct label
+// sides, no self-intersections, seeds inside their regions, sub-voxel accuracy, determinism.
+#include "filters/ExtractInterfaces.h"
+#include "filters/SelfIntersections.h"
+#include "filters/WellComposedLabels.h"
+#include "io/PolyWriter.h"
+#include "support_SyntheticLabels.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <random>
+#include <set>
+
+namespace jawmesh {
+namespace {
+
+std::set<Label> regionLabels(const InterfaceComplex& c) {
+    std::set<Label> s;
+    for (const auto& p : c.sides) {
+        s.insert(p[0]);
+        s.insert(p[1]);
+    }
+    s.erase(kOutsideLabel);
+    return s;
+}
+
+// Properties every extraction must have, whatever the field.
+void expectValidComplex(const InterfaceComplex& c, const LabelField& field) {
+    ASSERT_EQ(c.sides.size(), c.surface.triangles.size());
+    ASSERT_FALSE(c.surface.triangles.empty());
+    for (const auto& s : c.sides) ASSERT_LT(s[0], s[1]);
+    for (Label L : regionLabels(c)) EXPECT_EQ(test::checkRegionBoundary(c, L), "");
+    const auto si = findSelfIntersections(c.surface);
+    EXPECT_TRUE(si.pairs.empty()) << si.pairs.size() << " intersecting pairs";
+    EXPECT_TRUE(si.degenerate.empty()) << si.degenerate.size() << " degenerate triangles";
+    // the boundary of each region encloses exactly that region's voxels (winding number test on
+    // voxels next to the interfaces); voxels relabelled by the diagonal-contact repair excepted
+    auto repaired = field.labels->deepCopy();
+    makeLabelsWellComposed(*repaired, field.distances);
+    for (Label L : regionLabels(c)) {
+        const SurfaceMesh b = regionBoundary(c, L);
+        std::size_t checked = 0, wrong = 0;
+        for (std::size_t t = 0; t < c.surface.triangles.size(); t += 7) {
+            const Tri& tri = c.surface.triangles[t];
+            const Vec3 centroid = (c.surface.vertices[tri[0]] + c.surface.vertices[tri[1]] +
+                                   c.surface.vertices[tri[2]]) / 3.0;
+            const auto ijk = repaired->transform().worldToIndexNodeCentered(
+                openvdb::Vec3d(centroid.x(), centroid.y(), centroid.z()));
+            for (int dz = -1; dz <= 1; dz += 2) {
+                const openvdb::Coord v = ijk.offsetBy(0, 0, dz);
+                const auto w = repaired->transform().indexToWorld(v);
+                const double wn = test::windingNumber(b, Vec3(w.x(), w.y(), w.z()));
+                const bool inside = repaired->tree().getValue(v) == L;
+                ++checked;
+                if (std::abs(wn - (inside ? 1.0 : 0.0)) > 1e-6) ++wrong;
+            }
+        }
+        EXPECT_EQ(wrong, 0u) << labelName(L) << ": " << wrong << " of " << checked
+                             << " voxel centres on the wrong side";
+    }
+    // seeds: inside their region (in the well-composed labels), every region has one
+    std::set<Label> seeded;
+    for (const auto& s : c.seeds) {
+        EXPECT_NE(s.label, kOutsideLabel);
+        const auto ijk = repaired->transform().worldToIndexNodeCentered(
+            openvdb::Vec3d(s.point.x(), s.point.y(), s.point.z()));
+        EXPECT_EQ(repaired->tree().getValue(ijk), s.label);
+        seeded.insert(s.label);
+    }
+    EXPECT_EQ(seeded, regionLabels(c));
+}
+
+TEST(ExtractInterfaces, JawPhantomIsClosedManifoldAccurate) {
+    const double h = 0.05;
+    const auto syn = test::jawPhantom(h);
+    const InterfaceComplex c = extractInterfaces(syn.field);
+    expectValidComplex(c, syn.field);
+
+    // one seed per connected component: every region of the phantom is connected
+    std::map<Label, int> seedsPerLabel;
+    for (const auto& s : c.seeds) ++seedsPerLabel[s.label];
+    for (const auto& [L, n] : seedsPerLabel) EXPECT_EQ(n, 1) << labelName(L);
+
+    // every interface of the phantom is present, the two teeth never touch
+    std::set<std::pair<Label, Label>> pairs;
+    for (const auto& s : c.sides) pairs.insert({s[0], s[1]});
+    EXPECT_TRUE(pairs.count({toothLabel(24), pdlLabel(24)}));
+    EXPECT_TRUE(pairs.count({kMandibleBoneLabel, pdlLabel(24)}));
+    EXPECT_TRUE(pairs.count({kOutsideLabel, toothLabel(24)}));
+    EXPECT_TRUE(pairs.count({kOutsideLabel, kMandibleBoneLabel}));
+    EXPECT_FALSE(pairs.count({toothLabel(24), toothLabel(25)}));
+
+    // accuracy: vertices away from junctions lie on the analytic interface of their label pair
+    std::vector<std::set<std::pair<Label, Label>>> pairsAt(c.surface.vertices.size());
+    for (std::size_t t = 0; t < c.sides.size(); ++t)
+        for (auto v : c.surface.triangles[t]) pairsAt[v].insert({c.sides[t][0], c.sides[t][1]});
+    double worst = 0.0, sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t v = 0; v < pairsAt.size(); ++v) {
+        if (pairsAt[v].size() != 1) continue;
+        const auto [a, b] = *pairsAt[v].begin();
+        const Vec3& p = c.surface.vertices[v];
+        const double e = std::max(std::abs(syn.sdf(a, p)), std::abs(syn.sdf(b, p)));
+        worst = std::max(worst, e);
+        sum += e;
+        ++n;
+    }
+    RecordProperty("max_error_voxels", std::to_string(worst / h));
+    std::printf("phantom: %zu triangles, %zu vertices, %zu seeds; distance to the analytic interface: "
+                "mean %.4f, max %.4f voxel\n",
+                c.surface.triangles.size(), c.surface.vertices.size(), c.seeds.size(), sum / n / h,
+                worst / h);
+    EXPECT_LT(worst, 0.5 * h);
+}
+
+TEST(ExtractInterfaces, SameOutputWithOneAndTwoThreads) {
+    const auto syn = test::jawPhantom(0.06);
+    InterfaceComplex one, two;
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        one = extractInterfaces(syn.field);
+    }
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+        two = extractInterfaces(syn.field);
+    }
+    ASSERT_EQ(one.surface.vertices.size(), two.surface.vertices.size());
+    ASSERT_EQ(one.surface.triangles, two.surface.triangles);
+    ASSERT_EQ(one.sides, two.sides);
+    for (std::size_t i = 0; i < one.surface.vertices.size(); ++i)
+        ASSERT_EQ(one.surface.vertices[i], two.surface.vertices[i]);
+    ASSERT_EQ(one.seeds.size(), two.seeds.size());
+    for (std::size_t i = 0; i < one.seeds.size(); ++i) ASSERT_EQ(one.seeds[i].point, two.seeds[i].point);
+}
+
+TEST(ExtractInterfaces, ThinDiagonalSheetStaysConnected) {
+    // tooth | 1-voxel PDL sheet on a diagonal staircase | bone: diagonal-only PDL contacts
+    const int n = 16;
+    std::vector<Label> lab(std::size_t(n * n * n), kOutsideLabel);
+    for (int k = 1; k < n - 1; ++k)
+        for (int j = 1; j < n - 1; ++j)
+            for (int i = 1; i < n - 1; ++i) {
+                const int s = i + j;
+                lab[std::size_t(i + n * (j + n * k))] =
+                    s < n - 1 ? toothLabel(24) : s == n - 1 ? pdlLabel(24) : kMandibleBoneLabel;
+            }
+    const LabelField f = test::rawField(lab, n, n, n, 0.05);
+    const InterfaceComplex c = extractInterfaces(f);
+    expectValidComplex(c, f);
+    int pdlSeeds = 0;
+    for (const auto& s : c.seeds) pdlSeeds += s.label == pdlLabel(24);
+    EXPECT_EQ(pdlSeeds, 1);  // the sheet is one component
+    std::set<std::pair<Label, Label>> pairs;
+    for (const auto& s : c.sides) pairs.insert({s[0], s[1]});
+    EXPECT_FALSE(pairs.count({kMandibleBoneLabel, toothLabel(24)}));  // the sheet is not perforated
+}
+
+TEST(ExtractInterfaces, RandomLabelsWithDiagonalContactsAndJunctions) {
+    // the nastiest input: every voxel random among four regions (checkerboards, corner contacts,
+    // many-region junctions everywhere)
+    const Label choices[4] = {kOutsideLabel, kMandibleBoneLabel, toothLabel(24), pdlLabel(24)};
+    for (unsigned seed : {1u, 2u, 3u}) {
+        std::mt19937 rng(seed);
+        const int n = 10;
+        std::vector<Label> lab(std::size_t(n * n * n));
+        for (auto& L : lab) L = choices[rng() % 4];
+        const LabelField f = test::rawField(lab, n, n, n, 0.1);
+        const InterfaceComplex c = extractInterfaces(f);
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        expectValidComplex(c, f);
+    }
+}
+
+TEST(ExtractInterfaces, EdgeAndCornerContactsOfOneRegion) {
+    // two bone cubes touching along an edge, and two touching at a corner
+    const int n = 12;
+    std::vector<Label> lab(std::size_t(n * n * n), kOutsideLabel);
+    auto fill = [&](int x0, int y0, int z0, int x1, int y1, int z1, Label L) {
+        for (int k = z0; k < z1; ++k)
+            for (int j = y0; j < y1; ++j)
+                for (int i = x0; i < x1; ++i) lab[std::size_t(i + n * (j + n * k))] = L;
+    };
+    fill(1, 1, 1, 4, 4, 5, kMandibleBoneLabel);
+    fill(4, 4, 1, 7, 7, 5, kMandibleBoneLabel);  // edge contact
+    fill(7, 7, 5, 10, 10, 8, toothLabel(24));
+    fill(10, 10, 8, 11, 11, 11, toothLabel(24));  // corner contact
+    const LabelField f = test::rawField(lab, n, n, n, 0.05);
+    EXPECT_GT(countCriticalCells(*f.labels, f.distances), 0u);
+    const InterfaceComplex c = extractInterfaces(f);
+    expectValidComplex(c, f);
+}
+
+}  // namespace
+}  // namespace jawmesh

@@ -1,0 +1,92 @@
+// Exact self-intersection check: configurations decided exactly, speed on a million triangles.
+#include "filters/SelfIntersections.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace jawmesh {
+namespace {
+
+SurfaceMesh uvSphere(int nu, int nv, double r) {
+    SurfaceMesh m;
+    m.vertices.push_back(Vec3(0, 0, r));
+    for (int i = 1; i < nv; ++i)
+        for (int j = 0; j < nu; ++j) {
+            const double th = M_PI * i / nv, ph = 2 * M_PI * j / nu;
+            m.vertices.push_back(r * Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
+        }
+    m.vertices.push_back(Vec3(0, 0, -r));
+    const auto id = [&](int i, int j) { return std::int32_t(1 + (i - 1) * nu + (j % nu)); };
+    const auto south = std::int32_t(m.vertices.size() - 1);
+    for (int j = 0; j < nu; ++j) m.triangles.push_back({0, id(1, j), id(1, j + 1)});
+    for (int i = 1; i < nv - 1; ++i)
+        for (int j = 0; j < nu; ++j) {
+            m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    for (int j = 0; j < nu; ++j) m.triangles.push_back({south, id(nv - 1, j + 1), id(nv - 1, j)});
+    return m;
+}
+
+TEST(SelfIntersections, PairConfigurations) {
+    const Vec3 a[3] = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    const Tri ia = {0, 1, 2};
+    // piercing
+    const Vec3 b[3] = {Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), Vec3(0.3, 0.25, 1)};
+    EXPECT_TRUE(trianglesIntersect(a, ia, b, {3, 4, 5}));
+    // separate, parallel above
+    const Vec3 c[3] = {Vec3(0, 0, 1e-12), Vec3(1, 0, 1e-12), Vec3(0, 1, 1e-12)};
+    EXPECT_FALSE(trianglesIntersect(a, ia, c, {3, 4, 5}));
+    // touching at a point (vertex on the face) is an intersection
+    const Vec3 d[3] = {Vec3(0.25, 0.25, 0), Vec3(0.25, 0.25, 1), Vec3(0.3, 0.2, 1)};
+    EXPECT_TRUE(trianglesIntersect(a, ia, d, {3, 4, 5}));
+    // shared edge, coplanar, other side: fine; same side: folded
+    const Vec3 e[3] = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)};
+    EXPECT_FALSE(trianglesIntersect(a, ia, e, {1, 2, 6}));
+    const Vec3 g[3] = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0.2, 0.2, 0)};
+    EXPECT_TRUE(trianglesIntersect(a, ia, g, {1, 2, 6}));
+    // shared vertex, coplanar, disjoint wedges: fine; overlapping wedges: intersect
+    const Vec3 h[3] = {Vec3(0, 0, 0), Vec3(-1, 0, 0), Vec3(0, -1, 0)};
+    EXPECT_FALSE(trianglesIntersect(a, ia, h, {0, 7, 8}));
+    const Vec3 k[3] = {Vec3(0, 0, 0), Vec3(1, 1, 0), Vec3(2, 0.5, 0)};
+    EXPECT_TRUE(trianglesIntersect(a, ia, k, {0, 7, 8}));
+    // shared vertex, non-coplanar, crossing through the face
+    const Vec3 m[3] = {Vec3(0, 0, 0), Vec3(0.3, 0.3, 1), Vec3(0.3, 0.3, -1)};
+    EXPECT_TRUE(trianglesIntersect(a, ia, m, {0, 7, 8}));
+    // decided exactly: a corner 1e-300 mm above the face does not touch it, at 0 it does
+    const Vec3 n[3] = {Vec3(0.25, 0.25, 1e-300), Vec3(0.25, 0.25, 1), Vec3(0.3, 0.25, 1)};
+    EXPECT_FALSE(trianglesIntersect(a, ia, n, {3, 4, 5}));
+    const Vec3 o[3] = {Vec3(0.25, 0.25, 0), Vec3(0.25, 0.25, 1), Vec3(0.3, 0.25, 1)};
+    EXPECT_TRUE(trianglesIntersect(a, ia, o, {3, 4, 5}));
+}
+
+TEST(SelfIntersections, CleanSphereAndDentedSphere) {
+    SurfaceMesh s = uvSphere(64, 32, 1.0);
+    EXPECT_TRUE(findSelfIntersections(s).clean());
+    // push one vertex through the opposite side
+    s.vertices[1 + 10 * 64 + 5] *= -1.2;
+    EXPECT_FALSE(findSelfIntersections(s).pairs.empty());
+    // duplicate triangle and degenerate triangle
+    SurfaceMesh t = uvSphere(16, 8, 1.0);
+    t.triangles.push_back(t.triangles[3]);
+    t.triangles.push_back({0, 0, 1});
+    const auto r = findSelfIntersections(t);
+    EXPECT_FALSE(r.pairs.empty());
+    EXPECT_EQ(r.degenerate.size(), 1u);
+}
+
+TEST(SelfIntersections, MillionTrianglesInSeconds) {
+    const SurfaceMesh s = uvSphere(1000, 500, 10.0);
+    ASSERT_GT(s.triangles.size(), 990000u);
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = findSelfIntersections(s);
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("self-intersection check: %zu triangles in %.2f s\n", s.triangles.size(), secs);
+    EXPECT_TRUE(r.clean());
+    EXPECT_LT(secs, 30.0);
+}
+
+}  // namespace
+}  // namespace jawmesh

@@ -1,0 +1,203 @@
+// Shapes, corruptions and sign checks shared by the quick and slow tests of meshToLevelSet().
+#pragma once
+
+#include "io/SurfaceMesh.h"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/MeshToVolume.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <random>
+#include <utility>
+
+namespace jawmesh::test {
+
+/// Outward icosphere of radius r (mm) around c; subdivisions >= 0 (20 * 4^s triangles).
+inline SurfaceMesh icosphere(double r, int subdivisions, const Vec3& c = Vec3::Zero()) {
+    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+    SurfaceMesh m;
+    m.vertices = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                  {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                   {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    for (auto& v : m.vertices) v.normalize();
+    for (int s = 0; s < subdivisions; ++s) {
+        std::map<std::pair<int, int>, int> mid;
+        auto midpoint = [&](int a, int b) {
+            const auto key = std::minmax(a, b);
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            m.vertices.push_back((m.vertices[static_cast<std::size_t>(a)] + m.vertices[static_cast<std::size_t>(b)]).normalized());
+            const int id = static_cast<int>(m.vertices.size() - 1);
+            mid.emplace(key, id);
+            return id;
+        };
+        std::vector<Tri> next;
+        for (const Tri& f : m.triangles) {
+            const int a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), d = midpoint(f[2], f[0]);
+            next.push_back({f[0], a, d});
+            next.push_back({f[1], b, a});
+            next.push_back({f[2], d, b});
+            next.push_back({a, b, d});
+        }
+        m.triangles = std::move(next);
+    }
+    for (auto& v : m.vertices) v = c + r * v;
+    return m;
+}
+
+/// Outward axis-aligned box, 12 triangles.
+inline SurfaceMesh boxMesh(const Vec3& lo, const Vec3& hi) {
+    SurfaceMesh m;
+    for (int i = 0; i < 8; ++i) m.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+    m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    return m;
+}
+
+inline SurfaceMesh flipped(SurfaceMesh m) {
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
+    return m;
+}
+
+/// Reverses a random half of the triangles (fixed seed).
+inline SurfaceMesh flipHalf(SurfaceMesh m, unsigned seed = 7) {
+    std::mt19937 rng(seed);
+    for (auto& t : m.triangles)
+        if (rng() & 1u) std::swap(t[1], t[2]);
+    return m;
+}
+
+/// Removes every triangle whose centroid lies within a random radius in [rMin, rMax] (mm) of
+/// `count` random surface points (triangle centroids, fixed seed).
+inline SurfaceMesh punchHoles(const SurfaceMesh& m, int count, double rMin, double rMax, unsigned seed = 11) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<std::size_t> pick(0, m.triangles.size() - 1);
+    std::uniform_real_distribution<double> radius(rMin, rMax);
+    auto centroid = [&](const Tri& t) {
+        return (m.vertices[static_cast<std::size_t>(t[0])] + m.vertices[static_cast<std::size_t>(t[1])] +
+                m.vertices[static_cast<std::size_t>(t[2])]) / 3.0;
+    };
+    std::vector<std::pair<Vec3, double>> holes;
+    for (int i = 0; i < count; ++i) {
+        const Vec3 c = centroid(m.triangles[pick(rng)]);
+        holes.emplace_back(c, radius(rng));
+    }
+    SurfaceMesh out;
+    out.vertices = m.vertices;
+    for (const Tri& t : m.triangles) {
+        const Vec3 c = centroid(t);
+        const bool inHole = std::any_of(holes.begin(), holes.end(), [&](const auto& h) { return (c - h.first).norm() < h.second; });
+        if (!inHole) out.triangles.push_back(t);
+    }
+    return out;
+}
+
+/// Appends copies of a random `fraction` of the triangles: half reuse the vertex indices, half
+/// get their own copies of the vertices (so only welding finds them), some reversed.
+inline SurfaceMesh duplicateFaces(SurfaceMesh m, double fraction, unsigned seed = 13) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const std::size_t n = m.triangles.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (u(rng) >= fraction) continue;
+        Tri t = m.triangles[i];
+        if (rng() & 1u) {
+            for (auto& v : t) {
+                m.vertices.push_back(m.vertices[static_cast<std::size_t>(v)]);
+                v = static_cast<std::int32_t>(m.vertices.size() - 1);
+            }
+        }
+        m.triangles.push_back(t);
+    }
+    return m;
+}
+
+struct SignCheck {
+    std::size_t checked = 0;
+    std::size_t agreed = 0;
+    double fraction() const { return checked ? static_cast<double>(agreed) / static_cast<double>(checked) : 0.0; }
+};
+
+/// Sign check on the clean, closed, outward surface `clean`: samples at triangle centroids (every
+/// `stride`-th triangle), offset by +-offsetVoxels along the face normal, must read + outside and
+/// - inside from the trilinearly interpolated grid. A sample is skipped when its offset point lies
+/// within 1.0 voxel of another part of the clean surface (unsigned distance of the clean mesh,
+/// from OpenVDB), where the truth is ambiguous. Built once per clean mesh, reused for its copies.
+class OffsetSampleChecker {
+public:
+    OffsetSampleChecker(const SurfaceMesh& clean, double voxelMm, double offsetVoxels = 1.5, std::size_t stride = 1) {
+        const double h = voxelMm;
+        std::vector<openvdb::Vec3s> pts;
+        for (const auto& v : clean.vertices)
+            pts.emplace_back(static_cast<float>(v.x() / h), static_cast<float>(v.y() / h), static_cast<float>(v.z() / h));
+        std::vector<openvdb::Vec3I> tris;
+        for (const auto& t : clean.triangles)
+            tris.emplace_back(static_cast<unsigned>(t[0]), static_cast<unsigned>(t[1]), static_cast<unsigned>(t[2]));
+        const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(pts, tris);
+        const auto xform = openvdb::math::Transform::createLinearTransform(h);
+        const auto unsignedClean = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
+            adapter, *xform, static_cast<float>(offsetVoxels + 1.5), static_cast<float>(offsetVoxels + 1.5),
+            openvdb::tools::UNSIGNED_DISTANCE_FIELD);
+        const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> distance(*unsignedClean);
+        for (std::size_t i = 0; i < clean.triangles.size(); i += stride) {
+            const Tri& t = clean.triangles[i];
+            const Vec3& a = clean.vertices[static_cast<std::size_t>(t[0])];
+            const Vec3& b = clean.vertices[static_cast<std::size_t>(t[1])];
+            const Vec3& c = clean.vertices[static_cast<std::size_t>(t[2])];
+            const Vec3 n = (b - a).cross(c - a);
+            if (n.norm() == 0.0) continue;
+            const Vec3 centre = (a + b + c) / 3.0;
+            for (int side : {-1, 1}) {
+                const Vec3 q = centre + side * offsetVoxels * h * n.normalized();
+                const openvdb::Vec3d wq(q.x(), q.y(), q.z());
+                if (distance.wsSample(wq) < 1.0 * h) continue;
+                samples_.push_back({wq, side < 0});
+            }
+        }
+    }
+
+    std::size_t sampleCount() const { return samples_.size(); }
+
+    SignCheck check(const openvdb::FloatGrid& grid) const {
+        const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sample(grid);
+        SignCheck result;
+        for (const auto& s : samples_) {
+            ++result.checked;
+            const float value = sample.wsSample(s.point);
+            if (s.inside ? value < 0.0f : value > 0.0f) ++result.agreed;
+        }
+        return result;
+    }
+
+private:
+    struct Sample {
+        openvdb::Vec3d point;
+        bool inside;
+    };
+    std::vector<Sample> samples_;
+};
+
+/// Fraction of active voxels whose sign matches the analytic signed distance `sdf` (mm), over
+/// voxels with |sdf| >= minAbsVoxels voxels (closer ones are decided by faceting, not by sign).
+inline SignCheck checkActiveVoxels(const openvdb::FloatGrid& grid, const std::function<double(const Vec3&)>& sdf,
+                                   double minAbsVoxels = 0.5) {
+    const double h = grid.voxelSize()[0];
+    SignCheck check;
+    for (auto it = grid.cbeginValueOn(); it; ++it) {
+        const openvdb::Vec3d w = grid.indexToWorld(it.getCoord());
+        const double s = sdf(Vec3(w.x(), w.y(), w.z()));
+        if (std::abs(s) < minAbsVoxels * h) continue;
+        ++check.checked;
+        if ((s < 0) == (*it < 0.0f)) ++check.agreed;
+    }
+    return check;
+}
+
+}  // namespace jawmesh::test

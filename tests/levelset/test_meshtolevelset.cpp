@@ -1,0 +1,198 @@
+// meshToLevelSet() on small generated shapes: distances, signs under every kind of corruption the
+// issue lists, determinism across thread counts.
+#include "io/Error.h"
+#include "levelset/MeshToLevelSet.h"
+#include "levelset/OrientSurface.h"
+#include "support_meshtolevelset.h"
+
+#include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+namespace jawmesh {
+namespace {
+using test::checkActiveVoxels;
+using test::icosphere;
+
+constexpr double kVoxel = 0.05;
+
+class MeshToLevelSetTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { openvdb::initialize(); }
+};
+
+double sphereSdf(const Vec3& p, const Vec3& c, double r) { return (p - c).norm() - r; }
+
+TEST_F(MeshToLevelSetTest, SphereDistanceAndSignMatchAnalytic) {
+    const double r = 1.0;
+    MeshToLevelSetStats stats;
+    const auto grid = meshToLevelSet(icosphere(r, 4), kVoxel, 3.0, stats);
+    ASSERT_TRUE(grid);
+    EXPECT_EQ(grid->getGridClass(), openvdb::GRID_LEVEL_SET);
+    EXPECT_NEAR(grid->voxelSize()[0], kVoxel, 1e-12);
+    EXPECT_NEAR(grid->background(), 3.0 * kVoxel, 1e-6);
+    EXPECT_EQ(grid->indexToWorld(openvdb::Coord(20, 0, 0)), openvdb::Vec3d(1.0, 0, 0));
+    EXPECT_GT(stats.activeVoxels, 10000u);
+    // Exact next to the surface; OpenVDB's band expansion beyond 1.5 voxels is approximate (measured
+    // up to 0.53 voxel); the band edge is clamped to the background.
+    double worstNear = 0.0, worst = 0.0;
+    for (auto it = grid->cbeginValueOn(); it; ++it) {
+        const openvdb::Vec3d w = grid->indexToWorld(it.getCoord());
+        const double exact = sphereSdf(Vec3(w.x(), w.y(), w.z()), Vec3::Zero(), r);
+        if (std::abs(exact) < 1.5 * kVoxel) worstNear = std::max(worstNear, std::abs(*it - exact));
+        if (std::abs(exact) < 2.5 * kVoxel) worst = std::max(worst, std::abs(*it - exact));
+    }
+    EXPECT_LT(worstNear, 0.05 * kVoxel);
+    EXPECT_LT(worst, 0.6 * kVoxel);
+    const auto check = checkActiveVoxels(*grid, [&](const Vec3& p) { return sphereSdf(p, Vec3::Zero(), r); }, 0.1);
+    EXPECT_EQ(check.agreed, check.checked);
+    // Far inside and far outside (inactive) take the background with the right sign.
+    const auto acc = grid->getConstAccessor();
+    EXPECT_FLOAT_EQ(acc.getValue(openvdb::Coord(0, 0, 0)), -grid->background());
+    EXPECT_FLOAT_EQ(acc.getValue(openvdb::Coord(40, 40, 40)), grid->background());
+    EXPECT_EQ(stats.unresolvedVoxels, 0u);
+    // The offset-sample checker used on real data agrees too.
+    EXPECT_EQ(test::OffsetSampleChecker(icosphere(r, 4), kVoxel).check(*grid).fraction(), 1.0);
+}
+
+TEST_F(MeshToLevelSetTest, GridAlignedBoxWithVerticesOnVoxelCentres) {
+    // Every vertex and every face lies on voxel centre lines: the degenerate case for ray casts.
+    const SurfaceMesh box = test::boxMesh(Vec3(-0.5, -0.3, -0.2), Vec3(0.5, 0.3, 0.2));
+    const auto grid = meshToLevelSet(box, kVoxel);
+    const auto sdf = [](const Vec3& p) {
+        const Vec3 q = p.cwiseAbs() - Vec3(0.5, 0.3, 0.2);
+        return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+    };
+    const auto check = checkActiveVoxels(*grid, sdf, 0.5);
+    EXPECT_GT(check.checked, 1000u);
+    EXPECT_EQ(check.agreed, check.checked);
+}
+
+TEST_F(MeshToLevelSetTest, HolesAFewVoxelsWide) {
+    const SurfaceMesh holey = test::punchHoles(icosphere(1.0, 5), 6, 0.08, 0.15);
+    ASSERT_LT(holey.triangles.size(), icosphere(1.0, 5).triangles.size());
+    MeshToLevelSetStats stats;
+    const auto grid = meshToLevelSet(holey, kVoxel, 3.0, stats);
+    const auto check = checkActiveVoxels(*grid, [](const Vec3& p) { return sphereSdf(p, Vec3::Zero(), 1.0); });
+    EXPECT_GE(check.fraction(), 0.999) << check.agreed << "/" << check.checked;
+    EXPECT_GT(stats.fallbackVoxels, 0u);  // lines through the holes abstained
+    EXPECT_FLOAT_EQ(grid->tree().getValue(openvdb::Coord(0, 0, 0)), -grid->background());
+}
+
+TEST_F(MeshToLevelSetTest, HalfFlippedAndFullyFlippedSphere) {
+    for (const SurfaceMesh& m : {test::flipHalf(icosphere(1.0, 4)), test::flipped(icosphere(1.0, 4))}) {
+        MeshToLevelSetStats stats;
+        const auto grid = meshToLevelSet(m, kVoxel, 3.0, stats);
+        EXPECT_GT(stats.flippedTriangles, 0u);
+        const auto check = checkActiveVoxels(*grid, [](const Vec3& p) { return sphereSdf(p, Vec3::Zero(), 1.0); }, 0.1);
+        EXPECT_EQ(check.agreed, check.checked);
+    }
+}
+
+TEST_F(MeshToLevelSetTest, DuplicatedAndZeroAreaFaces) {
+    SurfaceMesh m = test::duplicateFaces(icosphere(1.0, 4), 0.3);
+    // Zero-area faces: repeated corners and collinear corners.
+    const std::size_t n = m.triangles.size();
+    for (std::size_t i = 0; i < n; i += 7) {
+        const Tri t = m.triangles[i];
+        m.triangles.push_back({t[0], t[0], t[1]});
+        m.vertices.push_back(0.5 * (m.vertices[static_cast<std::size_t>(t[0])] + m.vertices[static_cast<std::size_t>(t[1])]));
+        m.triangles.push_back({t[0], static_cast<std::int32_t>(m.vertices.size() - 1), t[1]});
+    }
+    MeshToLevelSetStats stats;
+    const auto grid = meshToLevelSet(m, kVoxel, 3.0, stats);
+    EXPECT_GT(stats.droppedDuplicate, 0u);
+    EXPECT_GT(stats.droppedDegenerate, 0u);
+    const auto check = checkActiveVoxels(*grid, [](const Vec3& p) { return sphereSdf(p, Vec3::Zero(), 1.0); }, 0.1);
+    EXPECT_EQ(check.agreed, check.checked);
+}
+
+TEST_F(MeshToLevelSetTest, OverlappingShellsGiveTheirUnion) {
+    // Dentin + enamel + pulp thrown together: two overlapping spheres and one inside the first.
+    SurfaceMesh m = icosphere(0.8, 4);
+    append(m, icosphere(0.6, 4, Vec3(0.9, 0.0, 0.0)));
+    append(m, icosphere(0.3, 3, Vec3(-0.2, 0.1, 0.0)));
+    const auto grid = meshToLevelSet(m, kVoxel);
+    const auto sdf = [](const Vec3& p) { return std::min(sphereSdf(p, Vec3::Zero(), 0.8), sphereSdf(p, Vec3(0.9, 0, 0), 0.6)); };
+    const auto check = checkActiveVoxels(*grid, sdf);
+    EXPECT_GT(check.checked, 1000u);
+    EXPECT_EQ(check.agreed, check.checked);
+    // No surface where the shells overlap: on the pulp and on the inner caps the distance is the
+    // distance to the union's boundary, not zero.
+    const auto acc = grid->getConstAccessor();
+    for (const openvdb::Vec3d p : {openvdb::Vec3d(-0.2, 0.1, 0.3), openvdb::Vec3d(0.8, 0.0, 0.0), openvdb::Vec3d(0.3, 0.0, 0.0)}) {
+        const Vec3 q(p.x(), p.y(), p.z());
+        const float expected = static_cast<float>(std::max(sdf(q), -static_cast<double>(grid->background())));
+        EXPECT_NEAR(acc.getValue(grid->transform().worldToIndexCellCentered(p)), expected, 0.5 * kVoxel) << p;
+    }
+}
+
+TEST_F(MeshToLevelSetTest, InwardShellInsideIsACavity) {
+    SurfaceMesh m = icosphere(1.0, 4);
+    append(m, test::flipped(icosphere(0.5, 4)));
+    MeshToLevelSetStats stats;
+    const auto grid = meshToLevelSet(m, kVoxel, 3.0, stats);
+    EXPECT_EQ(stats.nestedPatches, 1);
+    const auto sdf = [](const Vec3& p) { return std::max(sphereSdf(p, Vec3::Zero(), 1.0), -sphereSdf(p, Vec3::Zero(), 0.5)); };
+    const auto check = checkActiveVoxels(*grid, sdf, 0.1);
+    EXPECT_EQ(check.agreed, check.checked);
+    EXPECT_GT(grid->tree().getValue(openvdb::Coord(0, 0, 0)), 0.0f);  // cavity centre is outside
+    EXPECT_LT(grid->tree().getValue(openvdb::Coord(15, 0, 0)), 0.0f);  // the shell wall is inside
+}
+
+TEST_F(MeshToLevelSetTest, SmallSelfIntersectionKeepsInsideElsewhere) {
+    // Drag one vertex of a sphere across its neighbours so the surface folds over itself.
+    SurfaceMesh m = icosphere(1.0, 4);
+    std::size_t tip = 0;
+    for (std::size_t i = 0; i < m.vertices.size(); ++i)
+        if (m.vertices[i].x() > m.vertices[tip].x()) tip = i;
+    const Vec3 before = m.vertices[tip];
+    m.vertices[tip] = Vec3(0.9, 0.2, 0.05);
+    const auto grid = meshToLevelSet(m, kVoxel);
+    const auto sdf = [&](const Vec3& p) {
+        if ((p - before).norm() < 0.4 || (p - m.vertices[tip]).norm() < 0.4) return 0.0;  // the fold itself
+        return sphereSdf(p, Vec3::Zero(), 1.0);
+    };
+    const auto check = checkActiveVoxels(*grid, sdf);
+    EXPECT_GT(check.checked, 1000u);
+    EXPECT_EQ(check.agreed, check.checked);
+}
+
+TEST_F(MeshToLevelSetTest, SameGridWithOneAndTwoThreads) {
+    // The holey, half-flipped sphere exercises every path (repair, scanlines, Embree fallback).
+    const SurfaceMesh m = test::flipHalf(test::punchHoles(icosphere(1.0, 5), 6, 0.08, 0.15));
+    openvdb::FloatGrid::Ptr a, b;
+    {
+        tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        a = meshToLevelSet(m, kVoxel);
+    }
+    {
+        tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+        b = meshToLevelSet(m, kVoxel);
+    }
+    ASSERT_EQ(a->activeVoxelCount(), b->activeVoxelCount());
+    std::size_t differ = 0;
+    const auto acc = b->getConstAccessor();
+    for (auto it = a->cbeginValueOn(); it; ++it)
+        if (!acc.isValueOn(it.getCoord()) || acc.getValue(it.getCoord()) != *it) ++differ;
+    EXPECT_EQ(differ, 0u);
+}
+
+TEST_F(MeshToLevelSetTest, OrientSurfaceTurnsOutermostShellsOutward) {
+    const OrientedSurface o = orientSurface(test::flipHalf(icosphere(1.0, 3)));
+    SurfaceMesh repaired{o.vertices, o.triangles};
+    EXPECT_EQ(o.patchCount, 1);
+    EXPECT_NEAR(signedVolume(repaired), signedVolume(icosphere(1.0, 3)), 1e-9);
+}
+
+TEST_F(MeshToLevelSetTest, RejectsBadArguments) {
+    EXPECT_THROW(meshToLevelSet(icosphere(1.0, 1), 0.0), Error);
+    EXPECT_THROW(meshToLevelSet(icosphere(1.0, 1), -1.0), Error);
+    EXPECT_THROW(meshToLevelSet(icosphere(1.0, 1), 0.05, 0.5), Error);
+    EXPECT_THROW(meshToLevelSet(SurfaceMesh{}, 0.05), Error);
+}
+
+}  // namespace
+}  // namespace jawmesh

@@ -1,0 +1,42 @@
+// Shape measures of linear tetrahedra: dihedral angles and radius-edge ratio, per element and
+// summarised over a mesh (overall and per label).
+#pragma once
+
+#include "io/TetMesh.h"
+
+#include <cstdint>
+#include <map>
+
+namespace jawmesh {
+
+/// Shape of one tet.
+struct TetShape {
+    double minDihedralDeg = 0;   ///< smallest of the 6 interior dihedral angles, degrees
+    double maxDihedralDeg = 0;   ///< largest, degrees
+    double radiusEdgeRatio = 0;  ///< circumradius / shortest edge (regular tet: 0.612); inf if flat
+    double signedVolume = 0;     ///< mm^3, positive for the orientation of io/TetMesh.h
+};
+
+/// Shape of the tet (a, b, c, d), mm. Never throws; a flat tet gets dihedrals of 0/180 and an
+/// infinite radius-edge ratio. Cost: O(1).
+TetShape tetShape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// Quality summary over a mesh.
+struct QualityStats {
+    std::size_t tets = 0;
+    double minDihedralDeg = 180;  ///< over all tets
+    double maxDihedralDeg = 0;
+    double maxRadiusEdge = 0;
+    double meanRadiusEdge = 0;
+    std::int64_t worstTet = -1;             ///< tet with the smallest dihedral angle
+    std::size_t belowDihedralThreshold = 0; ///< tets whose min dihedral < the threshold given
+    std::map<Label, double> minDihedralByLabel;
+    std::map<Label, double> maxRadiusEdgeByLabel;
+};
+
+/// Measures every tet of `mesh` (indices must be in range). `dihedralThresholdDeg` sets what
+/// belowDihedralThreshold counts. Cost: O(T), TBB-parallel; result independent of thread count
+/// (ties for worstTet go to the lowest index; the mean is summed in a fixed order).
+QualityStats measureQuality(const TetMesh& mesh, double dihedralThresholdDeg = 10.0);
+
+}  // namespace jawmesh

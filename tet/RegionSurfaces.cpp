@@ -1,0 +1,73 @@
+#include "tet/RegionSurfaces.h"
+
+#include "io/Error.h"
+#include "io/MeshIO.h"
+#include "tet/TetFaceAdjacency.h"
+
+#include <filesystem>
+#include <unordered_map>
+
+namespace jawmesh {
+
+std::map<Label, SurfaceMesh> regionSurfaces(const TetMesh& mesh) {
+    const TetFaceAdjacency adj = tetFaceAdjacency(mesh);
+    // Faces in adjacency order (sorted by node key), so the output is deterministic.
+    std::map<Label, std::vector<Tri>> faces;
+    for (std::size_t g = 0; g < adj.groupCount(); ++g) {
+        const std::size_t begin = static_cast<std::size_t>(adj.groupStart[g]);
+        const std::size_t size = adj.groupSize(g);
+        for (std::size_t k = begin; k < begin + size; ++k) {
+            const TetFaceRef& f = adj.faces[k];
+            const Label own = mesh.labels[static_cast<std::size_t>(f.tet)];
+            bool sameOnOtherSide = false;
+            for (std::size_t o = begin; o < begin + size; ++o)
+                if (o != k && mesh.labels[static_cast<std::size_t>(adj.faces[o].tet)] == own) sameOnOtherSide = true;
+            if (sameOnOtherSide) continue;
+            const auto tri = outwardFace(mesh.tets[static_cast<std::size_t>(f.tet)], f.local);
+            faces[own].push_back({tri[0], tri[1], tri[2]});
+        }
+    }
+    std::map<Label, SurfaceMesh> out;
+    for (auto& [label, tris] : faces) {
+        SurfaceMesh& s = out[label];
+        std::vector<std::int32_t> used;
+        used.reserve(3 * tris.size());
+        for (const Tri& t : tris) used.insert(used.end(), t.begin(), t.end());
+        std::sort(used.begin(), used.end());
+        used.erase(std::unique(used.begin(), used.end()), used.end());
+        std::unordered_map<std::int32_t, std::int32_t> local;
+        local.reserve(used.size());
+        for (std::size_t i = 0; i < used.size(); ++i) {
+            local[used[i]] = static_cast<std::int32_t>(i);
+            s.vertices.push_back(mesh.nodes[static_cast<std::size_t>(used[i])]);
+        }
+        s.triangles.reserve(tris.size());
+        for (const Tri& t : tris) s.triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
+    }
+    return out;
+}
+
+std::string regionSurfaceFileName(Label label) {
+    switch (labelKind(label)) {
+    case LabelKind::Bone: return "bone.stl";
+    case LabelKind::Tooth:
+    case LabelKind::Pdl: return labelName(label) + ".stl";
+    default: throw Error("label " + std::to_string(label) + " has no region surface");
+    }
+}
+
+std::vector<std::string> writeRegionSurfaces(const TetMesh& mesh, const std::string& folder) {
+    std::vector<std::string> paths;
+    const auto surfaces = regionSurfaces(mesh);
+    // One jaw per output folder has one "bone.stl"; a mesh holding both bones keeps their names.
+    const bool bothBones = surfaces.count(kMandibleBoneLabel) && surfaces.count(kMaxillaBoneLabel);
+    for (const auto& [label, surface] : surfaces) {
+        const std::string name = bothBones && labelKind(label) == LabelKind::Bone ? labelName(label) + ".stl" : regionSurfaceFileName(label);
+        const std::string path = (std::filesystem::path(folder) / name).string();
+        writeSurface(surface, path);
+        paths.push_back(path);
+    }
+    return paths;
+}
+
+}  // namespace jawmesh

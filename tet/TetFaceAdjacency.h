@@ -1,0 +1,47 @@
+// Face adjacency of a tetrahedral mesh: every tet face, grouped by its three nodes. The one routine
+// behind validation (conformity, manifoldness) and region-surface extraction.
+#pragma once
+
+#include "io/TetMesh.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace jawmesh {
+
+/// One face of one tet. `key` is the three node indices sorted ascending (the face's identity);
+/// `local` is the index (0..3) of the tet node opposite the face.
+struct TetFaceRef {
+    std::array<std::int32_t, 3> key;
+    std::int32_t tet;
+    std::int32_t local;
+};
+
+/// Faces sorted by (key, tet, local); faces with equal keys are consecutive and form a group.
+/// Group g is faces[groupStart[g] .. groupStart[g+1]). A conformal manifold mesh has groups of size
+/// 1 (boundary faces) and 2 (shared faces) only.
+struct TetFaceAdjacency {
+    std::vector<TetFaceRef> faces;
+    std::vector<std::int64_t> groupStart;  ///< size = number of groups + 1
+    std::size_t groupCount() const { return groupStart.empty() ? 0 : groupStart.size() - 1; }
+    std::size_t groupSize(std::size_t g) const { return static_cast<std::size_t>(groupStart[g + 1] - groupStart[g]); }
+};
+
+/// Local node indices of the face opposite local node i, ordered so that the face normal (right-
+/// hand rule) points out of a positively oriented tet (see io/TetMesh.h).
+constexpr std::array<std::array<int, 3>, 4> kTetOutwardFaces = {{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
+
+/// The three node indices of face `local` of tet t, outward for a positively oriented tet.
+inline std::array<std::int32_t, 3> outwardFace(const Tet& t, int local) {
+    const auto& f = kTetOutwardFaces[static_cast<std::size_t>(local)];
+    return {t[static_cast<std::size_t>(f[0])], t[static_cast<std::size_t>(f[1])], t[static_cast<std::size_t>(f[2])]};
+}
+
+/// Builds the face adjacency of `mesh`.
+/// Node indices are not range-checked (validateTetMesh does that first).
+/// Cost: O(T log T) with a parallel sort of 4T entries (T = tet count; ~0.5 s for 1 M tets on two
+/// cores); result independent of the thread count.
+TetFaceAdjacency tetFaceAdjacency(const TetMesh& mesh);
+
+}  // namespace jawmesh

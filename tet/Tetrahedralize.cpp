@@ -1,0 +1,320 @@
+#include "tet/Tetrahedralize.h"
+
+#include "io/Error.h"
+#include "tet/ElementQuality.h"
+#include "tet/TetFaceAdjacency.h"
+
+#include <tetgen.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace jawmesh {
+namespace {
+
+constexpr const char* kWhat = "tetrahedralize";
+
+std::string tetgenReason(int code) {
+    switch (code) {
+    case 1: return "TetGen ran out of memory";
+    case 2: return "TetGen hit an internal error (often caused by nearly degenerate input)";
+    case 3: return "the interface surface intersects itself (TetGen found intersecting facets)";
+    case 4: return "the interface surface has a feature smaller than TetGen's tolerance (very short edge or thin sliver)";
+    case 5: return "two interface facets are very close to each other (nearly overlapping)";
+    case 10: return "TetGen rejected the input (invalid facet or point data)";
+    default: return "TetGen failed with code " + std::to_string(code);
+    }
+}
+
+std::string fmt(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+
+void checkComplex(const InterfaceComplex& plc) {
+    const auto& s = plc.surface;
+    if (s.triangles.empty()) throw Error(kWhat, "the interface complex has no triangles");
+    if (plc.sides.size() != s.triangles.size())
+        throw Error(kWhat, "the interface complex has " + std::to_string(plc.sides.size()) + " side pairs for " +
+                               std::to_string(s.triangles.size()) + " triangles");
+    if (plc.seeds.empty()) throw Error(kWhat, "the interface complex has no region seeds");
+    const auto nv = static_cast<std::int64_t>(s.vertices.size());
+    for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+        for (auto v : s.triangles[t])
+            if (v < 0 || v >= nv) throw Error(kWhat, "triangle " + std::to_string(t) + " has a vertex index out of range");
+        if (plc.sides[t][0] == plc.sides[t][1])
+            throw Error(kWhat, "triangle " + std::to_string(t) + " separates label " + std::to_string(plc.sides[t][0]) +
+                                   " from itself");
+    }
+    for (const auto& seed : plc.seeds) {
+        if (seed.label == kOutsideLabel) throw Error(kWhat, "a region seed has the outside label 0");
+        if (!seed.point.allFinite()) throw Error(kWhat, "a region seed is not finite");
+        labelKind(seed.label);  // throws for unknown labels
+    }
+}
+
+double regionVolumeBound(Label label, const TetOptions& o) {
+    double edge = 0;
+    switch (labelKind(label)) {
+    case LabelKind::Bone: edge = o.boneEdgeMm; break;
+    case LabelKind::Tooth: edge = o.toothEdgeMm; break;
+    case LabelKind::Pdl: edge = o.pdlEdgeMm; break;
+    default: break;
+    }
+    return edge > 0 ? tetVolumeForEdge(edge) : -1.0;  // TetGen: <= 0 means no bound
+}
+
+/// Fills a TetGen input. tetgenio frees its arrays with delete[], so they are allocated with new[].
+void fillInput(const InterfaceComplex& plc, const TetOptions& o, tetgenio& in) {
+    const auto& s = plc.surface;
+    in.firstnumber = 0;
+    in.numberofpoints = static_cast<int>(s.vertices.size());
+    in.pointlist = new REAL[3 * s.vertices.size()];
+    for (std::size_t i = 0; i < s.vertices.size(); ++i)
+        for (int k = 0; k < 3; ++k) in.pointlist[3 * i + static_cast<std::size_t>(k)] = s.vertices[i][k];
+
+    in.numberoffacets = static_cast<int>(s.triangles.size());
+    in.facetlist = new tetgenio::facet[s.triangles.size()];
+    in.facetmarkerlist = new int[s.triangles.size()];
+    for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+        tetgenio::facet& f = in.facetlist[t];
+        tetgenio::init(&f);
+        f.numberofpolygons = 1;
+        f.polygonlist = new tetgenio::polygon[1];
+        tetgenio::init(&f.polygonlist[0]);
+        f.polygonlist[0].numberofvertices = 3;
+        f.polygonlist[0].vertexlist = new int[3];
+        for (int k = 0; k < 3; ++k) f.polygonlist[0].vertexlist[k] = s.triangles[t][static_cast<std::size_t>(k)];
+        in.facetmarkerlist[t] = interfaceMarker(plc.sides[t][0], plc.sides[t][1]);
+    }
+
+    in.numberofregions = static_cast<int>(plc.seeds.size());
+    in.regionlist = new REAL[5 * plc.seeds.size()];
+    for (std::size_t r = 0; r < plc.seeds.size(); ++r) {
+        REAL* e = in.regionlist + 5 * r;
+        e[0] = plc.seeds[r].point.x();
+        e[1] = plc.seeds[r].point.y();
+        e[2] = plc.seeds[r].point.z();
+        // The attribute is the seed's number, not its label: TetGen numbers regions that no seed
+        // reaches max(attribute) + 1, ..., which could collide with a real label.
+        e[3] = static_cast<REAL>(r + 1);
+        e[4] = regionVolumeBound(plc.seeds[r].label, o);
+    }
+}
+
+/// TetGen 1.5.0 crashes (double free while unwinding from terminatetetgen) instead of throwing
+/// when it meets intersecting facets during meshing, so intersections are detected first with
+/// its diagnose mode (-d), which reports the intersecting triangles in out.trifacelist.
+void rejectSelfIntersections(const InterfaceComplex& plc, const TetOptions& o) {
+    tetgenio in, out;
+    fillInput(plc, o, in);
+    char sw[] = "pzQdM";
+    try {
+        tetrahedralize(sw, &in, &out);
+    } catch (int code) {
+        throw Error(kWhat, tetgenReason(code));
+    }
+    if (out.numberoftrifaces <= 0) return;
+    Vec3 c = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+        const int v = out.trifacelist[k];
+        if (v >= 0 && v < out.numberofpoints) c += Vec3(out.pointlist[3 * v], out.pointlist[3 * v + 1], out.pointlist[3 * v + 2]) / 3.0;
+    }
+    throw Error(kWhat, "the interface surface intersects itself (" + std::to_string(out.numberoftrifaces) +
+                           " intersecting triangles, the first near (" + fmt(c.x()) + ", " + fmt(c.y()) + ", " + fmt(c.z()) + "))");
+}
+
+struct Attempt {
+    std::string switches;
+    double optMaxDihedral;  // TetGen's optimisation target for the largest dihedral angle
+};
+
+std::string switchesFor(const TetOptions& o, int level, double ratio) {
+    std::string sw = "pzQA";
+    sw += "q" + fmt(ratio) + "/" + fmt(o.minDihedralDeg);
+    const bool regional = o.boneEdgeMm > 0 || o.toothEdgeMm > 0 || o.pdlEdgeMm > 0;
+    if (regional) sw += "a";
+    if (o.maxEdgeMm > 0) sw += "a" + fmt(tetVolumeForEdge(o.maxEdgeMm));
+    if (o.preserveBoundary) sw += "Y";
+    if (!o.mergeCoplanarFacets) sw += "M";
+    sw += "O" + std::to_string(std::clamp(level, 0, 9)) + "/7";
+    return sw;
+}
+
+/// The raw TetGen result: all nodes, tets with their attribute (label, 0 when unseeded).
+struct RawMesh {
+    TetMesh mesh;  // labels = attributes, may contain 0
+};
+
+RawMesh runTetgen(const InterfaceComplex& plc, const TetOptions& o, const Attempt& attempt) {
+    tetgenio in, out;
+    fillInput(plc, o, in);
+    tetgenbehavior b;
+    std::vector<char> sw(attempt.switches.begin(), attempt.switches.end());
+    sw.push_back('\0');
+    if (!b.parse_commandline(sw.data())) throw Error(kWhat, "TetGen rejected the switches '" + attempt.switches + "'");
+    b.optmaxdihedral = attempt.optMaxDihedral;
+    try {
+        tetrahedralize(&b, &in, &out);
+    } catch (int code) {
+        throw Error(kWhat, tetgenReason(code));
+    }
+    if (out.numberoftetrahedra <= 0) throw Error(kWhat, "TetGen produced no tetrahedra (are the seeds inside the regions?)");
+    if (out.numberofcorners != 4) throw Error(kWhat, "TetGen produced elements with " + std::to_string(out.numberofcorners) + " nodes");
+
+    RawMesh raw;
+    TetMesh& m = raw.mesh;
+    m.nodes.resize(static_cast<std::size_t>(out.numberofpoints));
+    for (std::size_t i = 0; i < m.nodes.size(); ++i)
+        m.nodes[i] = Vec3(out.pointlist[3 * i], out.pointlist[3 * i + 1], out.pointlist[3 * i + 2]);
+    const auto nt = static_cast<std::size_t>(out.numberoftetrahedra);
+    m.tets.resize(nt);
+    m.labels.assign(nt, kOutsideLabel);
+    const int na = out.numberoftetrahedronattributes;
+    for (std::size_t t = 0; t < nt; ++t) {
+        Tet e;
+        for (int k = 0; k < 4; ++k) e[static_cast<std::size_t>(k)] = out.tetrahedronlist[4 * t + static_cast<std::size_t>(k)];
+        const Vec3& a = m.nodes[static_cast<std::size_t>(e[0])];
+        const double det = (m.nodes[static_cast<std::size_t>(e[1])] - a)
+                               .dot((m.nodes[static_cast<std::size_t>(e[2])] - a).cross(m.nodes[static_cast<std::size_t>(e[3])] - a));
+        if (det < 0) std::swap(e[2], e[3]);
+        m.tets[t] = e;
+        if (na > 0) {
+            const long seed = std::lround(out.tetrahedronattributelist[static_cast<std::size_t>(na) * t]);
+            if (seed >= 1 && seed <= static_cast<long>(plc.seeds.size())) m.labels[t] = plc.seeds[static_cast<std::size_t>(seed - 1)].label;
+        }
+    }
+    return raw;
+}
+
+/// With the boundary preserved, every face between different attributes is an input triangle; its
+/// sides must be the two attributes. A mismatch means a missing or misplaced seed.
+void checkAttributesAgainstSides(const InterfaceComplex& plc, const TetMesh& m) {
+    std::map<std::array<std::int32_t, 3>, std::size_t> triangleOf;
+    for (std::size_t t = 0; t < plc.surface.triangles.size(); ++t) {
+        auto key = plc.surface.triangles[t];
+        std::sort(key.begin(), key.end());
+        triangleOf.emplace(key, t);
+    }
+    const TetFaceAdjacency adj = tetFaceAdjacency(m);
+    for (std::size_t g = 0; g < adj.groupCount(); ++g) {
+        const TetFaceRef& f0 = adj.faces[static_cast<std::size_t>(adj.groupStart[g])];
+        const Label a = m.labels[static_cast<std::size_t>(f0.tet)];
+        const Label b = adj.groupSize(g) == 2 ? m.labels[static_cast<std::size_t>(adj.faces[static_cast<std::size_t>(adj.groupStart[g]) + 1].tet)]
+                                              : kOutsideLabel;
+        if (a == b) continue;
+        const auto it = triangleOf.find(f0.key);
+        if (it == triangleOf.end()) continue;  // split by a Steiner point: cannot be checked here
+        const auto& sides = plc.sides[it->second];
+        if ((sides[0] == a && sides[1] == b) || (sides[0] == b && sides[1] == a)) continue;
+        const Vec3 c = (m.nodes[static_cast<std::size_t>(f0.key[0])] + m.nodes[static_cast<std::size_t>(f0.key[1])] +
+                        m.nodes[static_cast<std::size_t>(f0.key[2])]) / 3.0;
+        throw Error(kWhat, "interface triangle " + std::to_string(it->second) + " near (" + fmt(c.x()) + ", " + fmt(c.y()) +
+                               ", " + fmt(c.z()) + ") separates " + labelName(sides[0]) + " from " + labelName(sides[1]) +
+                               " but the seeds give " + labelName(a) + " and " + labelName(b) +
+                               ": a region has no seed or a seed lies in the wrong region");
+    }
+}
+
+/// Drops unlabeled tets and unused nodes (keeping node order).
+std::size_t keepLabeled(TetMesh& m) {
+    TetMesh kept;
+    std::vector<std::int32_t> newIndex(m.nodes.size(), -1);
+    std::size_t removed = 0;
+    for (std::size_t t = 0; t < m.tets.size(); ++t) {
+        if (m.labels[t] == kOutsideLabel) {
+            ++removed;
+            continue;
+        }
+        for (auto v : m.tets[t]) newIndex[static_cast<std::size_t>(v)] = 0;
+    }
+    std::int32_t next = 0;
+    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+        if (newIndex[i] < 0) continue;
+        newIndex[i] = next++;
+        kept.nodes.push_back(m.nodes[i]);
+    }
+    for (std::size_t t = 0; t < m.tets.size(); ++t) {
+        if (m.labels[t] == kOutsideLabel) continue;
+        Tet e = m.tets[t];
+        for (auto& v : e) v = newIndex[static_cast<std::size_t>(v)];
+        kept.tets.push_back(e);
+        kept.labels.push_back(m.labels[t]);
+    }
+    m = std::move(kept);
+    return removed;
+}
+
+}  // namespace
+
+double tetVolumeForEdge(double edgeMm) { return edgeMm * edgeMm * edgeMm / (6.0 * std::sqrt(2.0)); }
+
+int interfaceMarker(Label a, Label b) {
+    const Label lo = std::min(a, b), hi = std::max(a, b);
+    return lo * 1024 + hi;
+}
+
+std::array<Label, 2> interfacePairFromMarker(int marker) { return {marker / 1024, marker % 1024}; }
+
+TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, Progress& progress, TetStats* stats) {
+    ProgressStage stage(progress, "tetrahedralize");
+    checkComplex(plc);
+    if (!(options.radiusEdgeRatio > 1.0)) throw Error(kWhat, "the radius-edge bound must be > 1 (TetGen -q)");
+    if (options.minDihedralDeg < 0 || options.minDihedralDeg >= 70)
+        throw Error(kWhat, "the minimum dihedral angle must be in [0, 70) degrees");
+
+    if (options.checkIntersections) rejectSelfIntersections(plc, options);
+
+    std::vector<Attempt> ladder;
+    ladder.push_back({switchesFor(options, options.optimizationLevel, options.radiusEdgeRatio), 165.0});
+    // Stronger optimisation: more passes, a lower target for the largest dihedral (which removes
+    // slivers, whose small angles come with angles near 180), then a tighter radius-edge bound.
+    ladder.push_back({switchesFor(options, std::max(options.optimizationLevel, 7), options.radiusEdgeRatio), 155.0});
+    ladder.push_back({switchesFor(options, 9, std::max(1.1, std::min(options.radiusEdgeRatio, 1.3))), 150.0});
+    const std::size_t runs = std::min(ladder.size(), static_cast<std::size_t>(1 + std::max(0, options.repairAttempts)));
+
+    TetStats st;
+    st.inputVertices = plc.surface.vertices.size();
+    st.inputTriangles = plc.surface.triangles.size();
+    TetMesh best;
+    bool haveBest = false;
+    QualityStats bestQuality;
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t i = 0; i < runs; ++i) {
+        progress.checkCancelled();
+        stage.update(static_cast<double>(i) / static_cast<double>(runs));
+        RawMesh raw = runTetgen(plc, options, ladder[i]);
+        ++st.attempts;
+        if (options.preserveBoundary) checkAttributesAgainstSides(plc, raw.mesh);
+        const std::size_t removed = keepLabeled(raw.mesh);
+        if (raw.mesh.tets.empty()) throw Error(kWhat, "no tetrahedron received a label: are the seeds inside their regions?");
+        const QualityStats q = measureQuality(raw.mesh, options.minDihedralDeg);
+        const bool better = !haveBest || q.belowDihedralThreshold < bestQuality.belowDihedralThreshold ||
+                            (q.belowDihedralThreshold == bestQuality.belowDihedralThreshold && q.minDihedralDeg > bestQuality.minDihedralDeg);
+        if (better) {
+            best = std::move(raw.mesh);
+            bestQuality = q;
+            haveBest = true;
+            st.switches = ladder[i].switches + (ladder[i].optMaxDihedral != 165.0 ? " (optmaxdihedral " + fmt(ladder[i].optMaxDihedral) + ")" : "");
+            st.outsideTetsRemoved = removed;
+        }
+        if (bestQuality.belowDihedralThreshold == 0) break;
+    }
+    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    st.nodes = best.nodes.size();
+    st.tets = best.tets.size();
+    st.minDihedralDeg = bestQuality.minDihedralDeg;
+    st.maxRadiusEdge = bestQuality.maxRadiusEdge;
+    st.belowMinDihedral = bestQuality.belowDihedralThreshold;
+    if (stats) *stats = st;
+    stage.update(1.0);
+    return best;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,72 @@
+// Labeled, quality tetrahedral mesh of a multi-material interface complex, with TetGen 1.5.
+#pragma once
+
+#include "io/InterfaceComplex.h"
+#include "io/Progress.h"
+#include "io/TetMesh.h"
+
+#include <string>
+
+namespace jawmesh {
+
+/// Quality and sizing targets. Edge lengths are in mm and become TetGen volume bounds through the
+/// volume of a regular tet of that edge (L^3 / (6 sqrt 2)); 0 leaves that region unbounded.
+struct TetOptions {
+    double radiusEdgeRatio = 1.5;   ///< TetGen -q bound on circumradius / shortest edge (> 1.0)
+    double minDihedralDeg = 10.0;   ///< target minimum dihedral angle of every tet (TetGen -q/<deg>)
+    double boneEdgeMm = 0.0;        ///< target edge length in bone (coarse)
+    double toothEdgeMm = 0.0;       ///< target edge length in teeth (medium)
+    double pdlEdgeMm = 0.0;         ///< target edge length in PDL (fine)
+    double maxEdgeMm = 0.0;         ///< bound everywhere (TetGen -a<volume>), 0 = none
+    bool preserveBoundary = true;   ///< -Y: no Steiner points on the interface triangles
+    /// TetGen merges adjacent coplanar facets and re-triangulates them unless told not to (-M);
+    /// kept off so the output surface is exactly the input triangles.
+    bool mergeCoplanarFacets = false;
+    int optimizationLevel = 3;      ///< TetGen -O level (0..9), all local operations (scheme 7)
+    /// Run TetGen's intersection diagnosis (-d) first: TetGen 1.5.0 crashes instead of throwing
+    /// on intersecting facets, so turning this off is only safe for input known to be clean.
+    bool checkIntersections = true;
+    int repairAttempts = 2;         ///< extra runs with stronger optimisation when min dihedral is low
+};
+
+/// What a run did, for run.json and the report.
+struct TetStats {
+    std::string switches;               ///< TetGen switches of the run that was kept
+    int attempts = 0;                   ///< TetGen runs made (1 + repair runs)
+    double seconds = 0;                 ///< wall time of all TetGen runs
+    std::size_t inputVertices = 0;
+    std::size_t inputTriangles = 0;
+    std::size_t nodes = 0;
+    std::size_t tets = 0;
+    std::size_t outsideTetsRemoved = 0; ///< tets in enclosed cavities without a seed (attribute 0)
+    double minDihedralDeg = 0;
+    double maxRadiusEdge = 0;
+    std::size_t belowMinDihedral = 0;   ///< tets still below options.minDihedralDeg (0 when met)
+};
+
+/// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.
+double tetVolumeForEdge(double edgeMm);
+
+/// TetGen facet marker encoding the label pair of an interface triangle: lo * 1024 + hi with
+/// lo < hi, so it is > 0 and unique for every pair. interfacePairFromMarker inverts it.
+int interfaceMarker(Label a, Label b);
+std::array<Label, 2> interfacePairFromMarker(int marker);
+
+/// Note on -Y: TetGen cannot refine a region that is one tet thick between preserved facets (a
+/// thin PDL), so there the interface triangle size sets the element size; with
+/// preserveBoundary = false TetGen may split interface triangles (still conformal, same geometry).
+/// Tetrahedralizes the region interiors of `plc` with TetGen (switches p, q, A, a, Y, M, O, z, Q):
+/// every interface triangle becomes a facet (marker = interfaceMarker of its sides), each seed a
+/// region whose tets get its label and whose volume bound follows its kind. Tets of enclosed
+/// cavities that carry no seed (attribute 0) are dropped as outside; unused nodes are removed; tets
+/// are oriented positively. When the measured minimum dihedral is below options.minDihedralDeg,
+/// TetGen is re-run with stronger optimisation up to options.repairAttempts times and the best mesh
+/// is kept (stats->belowMinDihedral says whether the bound was met).
+/// Throws Error when the complex is malformed (sizes, indices, no seeds, seed label 0) or TetGen
+/// fails (its reason: self-intersecting facets, too-close facets, tiny features, out of memory...).
+/// Cost: TetGen's, roughly O(n log n) in the output size; single-threaded, deterministic. Not
+/// cancellable while TetGen runs (cancellation is checked between runs).
+TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, Progress& progress = noProgress(),
+                       TetStats* stats = nullptr);
+
+}  // namespace jawmesh
