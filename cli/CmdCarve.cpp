@@ -77,6 +77,7 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     if (!jc) throw Error(opt.caseDir, "case has no " + opt.jaw);
     const JawSurfaces surfaces = loadJaw(*jc, LoadOptions(), progress);
     const double secondsLoad = secondsSince(start);
+    const auto peakLoad = peakResidentMemoryBytes();
 
     CarveOptions co;
     co.pdlThicknessMm = opt.thicknessMm;
@@ -99,6 +100,7 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
         teeth[unn] = g;
     }
     const double secondsLevelSets = secondsSince(tLevel);
+    const auto peakLevelSets = peakResidentMemoryBytes();
 
     CarveSummary summary;
     const LabelField field = carveJaw(jaw, *bone, teeth, co, summary, progress);
@@ -111,6 +113,13 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     j["notes"] = surfaces.notes;
     j["seconds"] = {{"load", secondsLoad}, {"level_sets", secondsLevelSets}, {"carve", summary.seconds}, {"total", secondsSince(start)}};
     j["peak_memory_bytes"] = peakResidentMemoryBytes();
+    // Per stage: wall seconds and the process peak resident memory at its end (monotonic).
+    nlohmann::json stages = nlohmann::json::array();
+    stages.push_back({{"name", "load"}, {"seconds", secondsLoad}, {"peak_memory_bytes", peakLoad}});
+    stages.push_back({{"name", "level sets"}, {"seconds", secondsLevelSets}, {"peak_memory_bytes", peakLevelSets}});
+    for (const auto& st : summary.stages)
+        stages.push_back({{"name", "carve: " + st.name}, {"seconds", st.seconds}, {"peak_memory_bytes", st.peakMemoryBytes}});
+    j["stages"] = stages;
     writeFileAtomically(jawDir + "/summary.json", [&](std::ostream& os) { os << j.dump(2) << "\n"; }, false);
     if (opt.json) std::cout << j.dump() << std::endl;
     if (!global.quiet)

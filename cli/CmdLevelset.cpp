@@ -58,7 +58,7 @@ void runLevelset(const LevelsetOptions& opt, const GlobalOptions& global) {
           {"flipped_triangles", stats.flippedTriangles},
           {"patches", stats.patches},
           {"nested_patches", stats.nestedPatches}}},
-        {"sign", {{"crossings", stats.crossings}, {"fallback_voxels", stats.fallbackVoxels}, {"unresolved_voxels", stats.unresolvedVoxels}}},
+        {"sign", {{"crossings", stats.crossings}, {"internal_triangles", stats.internalTriangles}, {"fallback_voxels", stats.fallbackVoxels}, {"unresolved_voxels", stats.unresolvedVoxels}}},
         {"stage_seconds",
          {{"orient", stats.secondsOrient}, {"unsigned", stats.secondsUnsigned}, {"scanlines", stats.secondsScanlines}, {"sign", stats.secondsSign}}},
         {"seconds", seconds},

@@ -35,7 +35,8 @@ public:
             return 0.0;
         };
         const double fp = phi(p), fq = phi(q);
-        if (!(fp < 0.0 && fq > 0.0)) return 0.5;  // fields disagree with labels (repaired voxel)
+        // a voxel centre exactly on the interface (distance 0) belongs to the outer side
+        if (!(fp <= 0.0 && fq >= 0.0 && fp < fq)) return 0.5;  // fields disagree (repaired voxel)
         return std::clamp(fp / (fp - fq), 0.0, 1.0);
     }
 

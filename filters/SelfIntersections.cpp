@@ -15,7 +15,13 @@ namespace jawmesh {
 namespace {
 
 // ---- exact expansion arithmetic (Shewchuk 1997), used only when the float filter is unsure ----
-using Expansion = std::vector<double>;  // non-overlapping, increasing magnitude
+// Fixed capacity on the stack: the orient3d determinant of doubles needs at most 196 components.
+struct Expansion {
+    int n = 0;
+    double v[256];
+    Expansion() = default;
+    explicit Expansion(double x) : n(1) { v[0] = x; }
+};
 
 inline void twoSum(double a, double b, double& x, double& y) {
     x = a + b;
@@ -32,63 +38,68 @@ inline void twoProduct(double a, double b, double& x, double& y) {
     y = std::fma(a, b, -x);
 }
 
-Expansion grow(const Expansion& e, double b) {
-    Expansion h;
-    h.reserve(e.size() + 1);
+// e += b, in place (each output slot is written after its input was read), zeros eliminated.
+void grow(Expansion& e, double b) {
     double q = b;
-    for (double ei : e) {
+    int h = 0;
+    for (int i = 0; i < e.n; ++i) {
         double s, err;
-        twoSum(q, ei, s, err);
-        if (err != 0.0) h.push_back(err);
+        twoSum(q, e.v[i], s, err);
+        if (err != 0.0) e.v[h++] = err;
         q = s;
     }
-    if (q != 0.0 || h.empty()) h.push_back(q);
-    return h;
+    if (q != 0.0 || h == 0) e.v[h++] = q;
+    e.n = h;
 }
 
 Expansion add(Expansion e, const Expansion& f) {
-    for (double fi : f) e = grow(e, fi);
+    for (int i = 0; i < f.n; ++i) grow(e, f.v[i]);
     return e;
 }
 
 Expansion scale(const Expansion& e, double b) {
     Expansion h;
-    h.reserve(2 * e.size());
     double q, err;
-    twoProduct(e[0], b, q, err);
-    if (err != 0.0) h.push_back(err);
-    for (std::size_t i = 1; i < e.size(); ++i) {
+    twoProduct(e.v[0], b, q, err);
+    if (err != 0.0) h.v[h.n++] = err;
+    for (int i = 1; i < e.n; ++i) {
         double p1, p0, sum;
-        twoProduct(e[i], b, p1, p0);
+        twoProduct(e.v[i], b, p1, p0);
         twoSum(q, p0, sum, err);
-        if (err != 0.0) h.push_back(err);
+        if (err != 0.0) h.v[h.n++] = err;
         fastTwoSum(p1, sum, q, err);
-        if (err != 0.0) h.push_back(err);
+        if (err != 0.0) h.v[h.n++] = err;
     }
-    if (q != 0.0 || h.empty()) h.push_back(q);
+    if (q != 0.0 || h.n == 0) h.v[h.n++] = q;
     return h;
 }
 
 Expansion mul(const Expansion& e, const Expansion& f) {
-    Expansion r{0.0};
-    for (double fi : f) r = add(r, scale(e, fi));
+    Expansion r(0.0);
+    for (int i = 0; i < f.n; ++i) {
+        const Expansion s = scale(e, f.v[i]);
+        for (int k = 0; k < s.n; ++k) grow(r, s.v[k]);
+    }
     return r;
 }
 
 Expansion diff(double a, double b) {
     double x, y;
     twoSum(a, -b, x, y);
-    return y != 0.0 ? Expansion{y, x} : Expansion{x};
+    Expansion e;
+    if (y != 0.0) e.v[e.n++] = y;
+    e.v[e.n++] = x;
+    return e;
 }
 
 Expansion negate(Expansion e) {
-    for (double& v : e) v = -v;
+    for (int i = 0; i < e.n; ++i) e.v[i] = -e.v[i];
     return e;
 }
 
 int sign(const Expansion& e) {
-    for (auto it = e.rbegin(); it != e.rend(); ++it)
-        if (*it != 0.0) return *it > 0.0 ? 1 : -1;
+    for (int i = e.n - 1; i >= 0; --i)
+        if (e.v[i] != 0.0) return e.v[i] > 0.0 ? 1 : -1;
     return 0;
 }
 
@@ -96,6 +107,7 @@ int orient2dExact(double ax, double ay, double bx, double by, double cx, double 
     const double det = (ax - cx) * (by - cy) - (ay - cy) * (bx - cx);
     const double perm = std::abs((ax - cx) * (by - cy)) + std::abs((ay - cy) * (bx - cx));
     if (std::abs(det) > 1e-15 * perm) return det > 0.0 ? 1 : -1;
+    if ((ax == cx && ay == cy) || (bx == cx && by == cy)) return 0;
     const Expansion l = mul(diff(ax, cx), diff(by, cy));
     const Expansion r = mul(diff(ay, cy), diff(bx, cx));
     return sign(add(l, negate(r)));
@@ -202,6 +214,9 @@ int orient3dExact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
                         std::abs(bdx) * (std::abs(cdy * adz) + std::abs(cdz * ady)) +
                         std::abs(cdx) * (std::abs(ady * bdz) + std::abs(adz * bdy));
     if (std::abs(det) > 1e-14 * perm) return det > 0.0 ? 1 : -1;
+    if ((adx == 0.0 && ady == 0.0 && adz == 0.0) || (bdx == 0.0 && bdy == 0.0 && bdz == 0.0) ||
+        (cdx == 0.0 && cdy == 0.0 && cdz == 0.0))
+        return 0;  // d coincides with a corner (differences of doubles are 0 only for equal values)
     const Expansion eadx = diff(a.x(), d.x()), eady = diff(a.y(), d.y()), eadz = diff(a.z(), d.z());
     const Expansion ebdx = diff(b.x(), d.x()), ebdy = diff(b.y(), d.y()), ebdz = diff(b.z(), d.z());
     const Expansion ecdx = diff(c.x(), d.x()), ecdy = diff(c.y(), d.y()), ecdz = diff(c.z(), d.z());

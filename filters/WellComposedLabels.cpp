@@ -56,7 +56,16 @@ int pickVictim(const std::vector<int>& cand, const std::array<Label, 8>& lab,
     return best;
 }
 
-// One fix for a critical cell, or none. Examines regions in label order; the first critical one
+// Highest-priority label among corners `cand`.
+Label highestOf(const std::vector<int>& cand, const std::array<Label, 8>& lab) {
+    Label best = lab[cand[0]];
+    for (int k : cand)
+        if (higher(lab[k], best)) best = lab[k];
+    return best;
+}
+
+// One fix for a critical cell, or none. Every fix relabels a voxel to a label of strictly higher
+// priority, so the repair terminates. Regions are examined in label order; the first critical one
 // decides.
 bool fixCell(const std::array<Label, 8>& lab, const std::array<openvdb::Coord, 8>& xyz,
              const DistanceLookup& dist, Fix& fix) {
@@ -64,6 +73,22 @@ bool fixCell(const std::array<Label, 8>& lab, const std::array<openvdb::Coord, 8
     std::sort(distinct.begin(), distinct.end());
     const auto end = std::unique(distinct.begin(), distinct.end());
     if (end - distinct.begin() < 2) return false;
+    // L is joined through a separator voxel below it, or else one of its own voxels is cut off
+    // (raised to the highest separator label next to it).
+    const auto joinOrCut = [&](Label L, const std::vector<int>& own, const std::vector<int>& sep) {
+        std::vector<int> below;
+        for (int k : sep)
+            if (higher(L, lab[k])) below.push_back(k);
+        if (!below.empty()) {
+            fix = {xyz[pickVictim(below, lab, xyz, dist)], L};
+            return;
+        }
+        const int v = pickVictim(own, lab, xyz, dist);
+        std::vector<int> next;
+        for (int k : sep)
+            if (__builtin_popcount(unsigned(k ^ v)) == 1) next.push_back(k);
+        fix = {xyz[v], highestOf(next.empty() ? sep : next, lab)};
+    };
     for (auto it = distinct.begin(); it != end; ++it) {
         const Label L = *it;
         // (a) L on one face diagonal, absent from the other
@@ -71,11 +96,7 @@ bool fixCell(const std::array<Label, 8>& lab, const std::array<openvdb::Coord, 8
             for (int s = 0; s < 2; ++s) {
                 const int a = f[s], b = f[s + 2], c = f[s + 1], d = f[(s + 3) % 4];
                 if (lab[a] != L || lab[b] != L || lab[c] == L || lab[d] == L) continue;
-                if (lab[c] == lab[d] && higher(lab[c], L)) {
-                    fix = {xyz[pickVictim({a, b}, lab, xyz, dist)], lab[c]};
-                } else {
-                    fix = {xyz[pickVictim({c, d}, lab, xyz, dist)], L};
-                }
+                joinOrCut(L, {a, b}, {c, d});
                 return true;
             }
         }
@@ -86,21 +107,23 @@ bool fixCell(const std::array<Label, 8>& lab, const std::array<openvdb::Coord, 8
             const int o = 7 - k;
             if (count == 2 && lab[k] == L && lab[o] == L) {
                 std::vector<int> sep;
-                bool oneLabel = true;
                 for (int m = 0; m < 8; ++m)
-                    if (m != k && m != o) {
-                        sep.push_back(m);
-                        oneLabel = oneLabel && lab[m] == lab[sep[0]];
-                    }
-                if (oneLabel && higher(lab[sep[0]], L))
-                    fix = {xyz[pickVictim({k, o}, lab, xyz, dist)], lab[sep[0]]};
-                else
-                    fix = {xyz[pickVictim(sep, lab, xyz, dist)], L};
+                    if (m != k && m != o) sep.push_back(m);
+                joinOrCut(L, {k, o}, sep);
                 return true;
             }
-            if (count == 6 && lab[k] != L && lab[o] != L) {
-                if (lab[k] == lab[o]) continue;  // that region has case 1 itself
-                fix = {xyz[pickVictim({k, o}, lab, xyz, dist)], L};
+            if (count == 6 && lab[k] != L && lab[o] != L && lab[k] != lab[o]) {
+                // L's complement touches itself at the centre only: fill a corner with L, or, when
+                // both corners rank above L, grow the lower-ranked corner's region into L
+                std::vector<int> below;
+                for (int m : {k, o})
+                    if (higher(L, lab[m])) below.push_back(m);
+                if (!below.empty()) {
+                    fix = {xyz[pickVictim(below, lab, xyz, dist)], L};
+                } else {
+                    const int c = higher(lab[k], lab[o]) ? o : k;
+                    fix = {xyz[pickVictim({c ^ 1, c ^ 2, c ^ 4}, lab, xyz, dist)], lab[c]};
+                }
                 return true;
             }
         }
@@ -158,7 +181,7 @@ std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
                                    const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
                                    Progress& progress) {
     std::size_t relabelled = 0;
-    for (int sweep = 0; sweep < 64; ++sweep) {
+    for (int sweep = 0; sweep < 256; ++sweep) {
         progress.checkCancelled();
         const auto fixes = proposeFixes(labels, distances, progress);
         if (fixes.empty()) return relabelled;
@@ -166,7 +189,7 @@ std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
         for (const Fix& f : fixes) acc.setValue(f.voxel, f.to);
         relabelled += fixes.size();
     }
-    throw Error("label field: diagonal contacts between regions could not be removed in 64 sweeps");
+    throw Error("label field: diagonal contacts between regions could not be removed in 256 sweeps");
 }
 
 std::size_t countCriticalCells(const openvdb::Int32Grid& labels,

@@ -16,6 +16,12 @@ struct RegionSeed {
     Label label;   ///< the region's label (never kOutsideLabel)
 };
 
+/// Facet marker encoding the label pair of an interface triangle (TetGen .poly files, Medit
+/// references): lo * 1024 + hi with lo < hi, so it is > 0 and unique for every pair of labels.
+int interfaceMarker(Label a, Label b);
+/// Inverse of interfaceMarker: {lo, hi}.
+std::array<Label, 2> interfacePairFromMarker(int marker);
+
 struct InterfaceComplex {
     SurfaceMesh surface;  ///< all interface triangles, vertices shared between interfaces
     /// Per triangle, the two labels it separates: the triangle's normal (right-hand rule) points

@@ -11,14 +11,6 @@
 
 namespace jawmesh {
 
-int interfaceMarker(Label a, Label b) {
-    return 1000 * std::min(a, b) + std::max(a, b);
-}
-
-std::array<Label, 2> interfaceFromMarker(int marker) {
-    return {marker / 1000, marker % 1000};
-}
-
 namespace {
 
 bool endsWith(const std::string& s, const std::string& suffix) {
@@ -44,7 +36,7 @@ void writeTetgenPoly(const InterfaceComplex& complex, const std::string& path) {
         throw Error(path, "interface complex has " + std::to_string(complex.sides.size()) +
                               " label pairs for " + std::to_string(S.triangles.size()) + " triangles");
     writeFileAtomically(path, [&](std::ostream& os) {
-        os << "# jawmesh interface complex: facet marker = 1000 * min(label) + max(label)\n";
+        os << "# jawmesh interface complex: facet marker = 1024 * min(label) + max(label)\n";
         os << S.vertices.size() << " 3 0 0\n";
         for (std::size_t i = 0; i < S.vertices.size(); ++i) {
             os << i + 1;

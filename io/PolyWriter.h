@@ -1,24 +1,17 @@
 // TetGen input files for an InterfaceComplex: .poly / .smesh (nodes, triangular facets with a
-// boundary marker coding the label pair, region list from the seeds), plus each region's boundary
+// boundary marker interfaceMarker (io/InterfaceComplex.h) of the label pair:
+// 1024 * min label + max label), the region list from the seeds, plus each region's boundary
 // as its own surface file for inspection.
 #pragma once
 
 #include "io/InterfaceComplex.h"
 
-#include <array>
 #include <string>
 
 namespace jawmesh {
 
-/// Facet marker of the interface between labels a and b (order-free): 1000 * min + max, so
-/// bone_mandible/outside is 1, tooth_24/pdl_24 is 124224. Always > 0 (0 means "none" to TetGen).
-int interfaceMarker(Label a, Label b);
-
-/// The label pair {min, max} of a marker from interfaceMarker().
-std::array<Label, 2> interfaceFromMarker(int marker);
-
 /// Writes `complex` for TetGen: ".poly" (part 1 nodes, part 2 one single-polygon facet per
-/// triangle with its marker, part 3 no holes, part 4 one region per seed: point and label as the
+/// triangle with its marker (1024 * min label + max label), part 3 no holes, part 4 one region per seed: point and label as the
 /// region attribute, no volume constraint) or ".smesh" (same content, the smesh layout), chosen by
 /// the extension. Indices are 1-based. Written atomically.
 /// Throws Error on I/O failure, another extension, or sides / triangles of different lengths.

@@ -5,13 +5,16 @@
 #include "levelset/Csg.h"
 
 #include <Eigen/Eigenvalues>
+#include "io/ResourceUsage.h"
+
+#include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/LevelSetUtil.h>
-#include <openvdb/tools/MeshToVolume.h>
-#include <openvdb/tools/VolumeToMesh.h>
+#include <openvdb/tools/Morphology.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -42,14 +45,17 @@ struct Params {
     std::optional<PdlProfile> profile;
     double gapBridge = 0.5;
     double clearance = 0.05;
+    double far = 0.7;     ///< distances beyond the gap-bridging reach are reported as this (mm)
+    float boneBg = 0.15f; ///< background of the input bone grid
 };
 
 /// Per-tooth working data.
 struct ToothWork {
     int unn = 0;
     Label toothL = 0, pdlL = 0;
-    FloatGrid::ConstPtr T;   ///< tooth distance, band wide enough for the carving
-    FloatGrid::Ptr U;        ///< unsigned distance to the bone surface near the tooth
+    FloatGrid::ConstPtr T;   ///< tooth distance: input band, plus exterior distances where bone is
+                             ///< within gap-bridging reach; +-far elsewhere outside the band
+    FloatGrid::Ptr X;        ///< bone distance outside the bone band, where this tooth is within reach
     CoordBBox box;           ///< index bounds of T's active voxels
     bool profiled = false;
     Vec3d origin{0, 0, 0}, axis{0, 0, 1};
@@ -63,11 +69,13 @@ double thicknessAt(const ToothWork& t, const Params& P, const Vec3d& world) {
     return pdlThicknessAt(*P.profile, s);
 }
 
-/// Signed bone distance: sign from the input bone grid (valid everywhere), magnitude from the
-/// tooth's unsigned distance to the nearby bone surface (valid where it matters, see carveJaw).
-inline double signedBone(FloatAcc& B, FloatAcc& U, const Coord& c) {
-    const double u = U.getValue(c);
-    return B.getValue(c) < 0 ? -u : u;
+/// Signed bone distance: the input band, else the tooth's extension X (exterior voxels within
+/// reach), else "far" outside and the clamped band value inside (deep bone is in the socket anyway).
+inline double signedBone(FloatAcc& B, FloatAcc& X, const Params& P, const Coord& c) {
+    float v;
+    if (X.probeValue(c, v)) return v;
+    const float b = B.getValue(c);
+    return b >= P.boneBg ? P.far : b;
 }
 
 /// What one tooth's rules say at one voxel (before the clearance between teeth).
@@ -79,11 +87,11 @@ struct Local {
     double excl = 0;   ///< w - T: positive where bone is excluded by this tooth
 };
 
-Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& U, FloatAcc& B,
+Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& X, FloatAcc& B,
                 const openvdb::math::Transform& xf, const Coord& c) {
     Local r;
     r.T = T.getValue(c);
-    const double b = signedBone(B, U, c);
+    const double b = signedBone(B, X, P, c);
     const double th = thicknessAt(t, P, xf.indexToWorld(c));
     const double e = P.ratio * th, w = th - e;
     double gap = r.T + b - P.gapBridge;
@@ -91,8 +99,9 @@ Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& U, F
         const Coord dx(1, 0, 0), dy(0, 1, 0), dz(0, 0, 1);
         const Vec3d gT(T.getValue(c + dx) - T.getValue(c - dx), T.getValue(c + dy) - T.getValue(c - dy),
                        T.getValue(c + dz) - T.getValue(c - dz));
-        const Vec3d gB(signedBone(B, U, c + dx) - signedBone(B, U, c - dx), signedBone(B, U, c + dy) - signedBone(B, U, c - dy),
-                       signedBone(B, U, c + dz) - signedBone(B, U, c - dz));
+        const Vec3d gB(signedBone(B, X, P, c + dx) - signedBone(B, X, P, c - dx),
+                       signedBone(B, X, P, c + dy) - signedBone(B, X, P, c - dy),
+                       signedBone(B, X, P, c + dz) - signedBone(B, X, P, c - dz));
         const double lT = gT.length(), lB = gB.length();
         // A clamped field (outside its band) has no direction: treat as not facing.
         const double dot = (lT > 1e-3 * P.voxel && lB > 1e-3 * P.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
@@ -108,12 +117,12 @@ Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& U, F
 
 /// Accessors of one thread to every tooth's grids.
 struct Accessors {
-    std::vector<FloatAcc> T, U;
+    std::vector<FloatAcc> T, X;
     FloatAcc B;
     Accessors(const std::vector<ToothWork>& teeth, const FloatGrid& bone) : B(bone.getConstAccessor()) {
         for (const auto& t : teeth) {
             T.push_back(t.T->getConstAccessor());
-            U.push_back(t.U->getConstAccessor());
+            X.push_back(t.X->getConstAccessor());
         }
     }
 };
@@ -135,56 +144,41 @@ double bisector(int k, const std::vector<int>& cand, Accessors& acc, const Coord
     return v;
 }
 
-/// Copies the part of `grid` inside index box `box` (leaves and leaf-sized tiles).
-FloatGrid::Ptr copyBox(const FloatGrid& grid, const CoordBBox& box) {
-    auto out = FloatGrid::create(grid.background());
-    out->setTransform(grid.transform().copy());
-    out->setGridClass(openvdb::GRID_LEVEL_SET);
-    auto acc = grid.getConstAccessor();
-    const int dim = int(openvdb::FloatTree::LeafNodeType::DIM);
-    const Coord lo = box.min() & ~(dim - 1);
-    for (int x = lo.x(); x <= box.max().x(); x += dim)
-        for (int y = lo.y(); y <= box.max().y(); y += dim)
-            for (int z = lo.z(); z <= box.max().z(); z += dim) {
-                const Coord o(x, y, z);
-                if (const auto* leaf = grid.tree().probeConstLeaf(o)) {
-                    out->tree().addLeaf(new openvdb::FloatTree::LeafNodeType(*leaf));
-                } else {
-                    const float v = acc.getValue(o);
-                    if (v < 0) out->tree().addTile(1, o, v, false);
-                }
-            }
-    return out;
-}
-
-/// Unsigned distance (band `bandVoxels`) to the part of the bone surface within `reachMm` of the
-/// tooth (T < reachMm). Bone surface = marching-cubes surface of the bone grid around the tooth.
-FloatGrid::Ptr boneDistanceNearTooth(const FloatGrid& bone, const FloatGrid& T, const CoordBBox& box, double reachMm,
-                                     double bandVoxels) {
-    CoordBBox b = box;
-    b.expand(4);
-    const auto local = copyBox(bone, b);
-    std::vector<openvdb::Vec3s> points;
-    std::vector<openvdb::Vec3I> tris;
-    std::vector<openvdb::Vec4I> quads;
-    openvdb::tools::volumeToMesh(*local, points, tris, quads, 0.0, 0.0);
-    const auto& xf = T.transform();
-    auto acc = T.getConstAccessor();
-    std::vector<char> near(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i)
-        near[i] = acc.getValue(xf.worldToIndexNodeCentered(Vec3d(points[i]))) < reachMm;
-    std::vector<openvdb::Vec3I> keepTris;
-    std::vector<openvdb::Vec4I> keepQuads;
-    for (const auto& q : quads)
-        if (near[q[0]] || near[q[1]] || near[q[2]] || near[q[3]]) keepQuads.push_back(q);
-    for (const auto& t : tris)
-        if (near[t[0]] || near[t[1]] || near[t[2]]) keepTris.push_back(t);
-    if (keepQuads.empty() && keepTris.empty()) {
-        auto empty = FloatGrid::create(float(bandVoxels * xf.voxelSize()[0]));
-        empty->setTransform(xf.copy());
-        return empty;
-    }
-    return openvdb::tools::meshToUnsignedDistanceField<FloatGrid>(xf, points, keepTris, keepQuads, float(bandVoxels));
+/// The working fields of one tooth. The tooth band is used as given (re-normalised only when the
+/// input band is narrower than the PDL rules need). Gap bridging needs T and B beyond their bands,
+/// but only where a gap can be: outside both, with T + B < gapBridge, so T < gapBridge and
+/// B < gapBridge + e. There (and only there) both are extended by closest-point propagation
+/// (extendExteriorDistance): B within reach of the tooth, then T where bone is near.
+void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, const Params& P, double exVoxels,
+                  double inVoxels) {
+    FloatGrid::Ptr T;
+    if (bandHalfWidthMm(tooth) >= std::max(exVoxels, inVoxels) * P.voxel - 1e-6)
+        T = tooth.deepCopy();
+    else
+        T = renormalizeLevelSet(tooth, exVoxels + 1, inVoxels + 1);
+    const double bgT = bandHalfWidthMm(*T);
+    // Chebyshev dilation of the band by `reach` voxels covers every point with T < gapBridge.
+    const int reach = std::max(0, int(std::ceil((P.gapBridge - bgT) / P.voxel)) + 1);
+    openvdb::MaskTree near(T->tree(), false, openvdb::TopologyCopy());
+    if (reach > 0)
+        openvdb::tools::dilateActiveValues(near, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
+    // Bone distances are not needed deeper in the tooth than e (there it is tooth whatever B is).
+    const double eMax = P.ratio * (P.profile ? std::max({P.profile->cervical, P.profile->midRoot, P.profile->apical})
+                                             : P.uniformThickness);
+    const auto deep = openvdb::tools::sdfInteriorMask(*T, float(-(eMax + P.voxel)));
+    near.topologyDifference(deep->tree());
+    t.X = extendExteriorDistance(bone, near, P.far);
+    openvdb::MaskTree nearBone(t.X->tree(), false, openvdb::TopologyCopy());
+    for (auto leaf = near.cbeginLeaf(); leaf; ++leaf)
+        if (const auto* bl = bone.tree().probeConstLeaf(leaf->origin()))
+            nearBone.touchLeaf(leaf->origin())->getValueMask() |= bl->getValueMask();
+    nearBone.topologyIntersection(near);
+    const auto Tx = extendExteriorDistance(*T, nearBone, P.far);
+    openvdb::tools::changeLevelSetBackground(T->tree(), float(P.far));
+    auto ta = T->getAccessor();
+    for (auto it = Tx->tree().cbeginValueOn(); it; ++it) ta.setValue(it.getCoord(), *it);
+    t.T = T;
+    t.box = T->evalActiveVoxelBoundingBox();
 }
 
 /// Long axis of the tooth and the cervical / apical heights along it, for the thickness profile.
@@ -193,14 +187,14 @@ void fitProfileAxis(ToothWork& t, const Params& P, const FloatGrid& bone, const 
     std::vector<Vec3d> surface;
     std::vector<char> contact;
     auto T = t.T->getConstAccessor();
-    auto U = t.U->getConstAccessor();
+    auto X = t.X->getConstAccessor();
     auto B = bone.getConstAccessor();
     const double eCervical = P.ratio * P.profile->cervical;
     for (auto it = t.T->tree().cbeginValueOn(); it; ++it) {
         const double v = *it;
         if (v >= 0 || v < -2 * P.voxel) continue;
         surface.push_back(xf.indexToWorld(it.getCoord()));
-        contact.push_back(signedBone(B, U, it.getCoord()) < eCervical + P.voxel);
+        contact.push_back(signedBone(B, X, P, it.getCoord()) < eCervical + P.voxel);
     }
     if (surface.empty()) return;
     Vec3d mean(0, 0, 0);
@@ -283,32 +277,36 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
     summary = CarveSummary();
     summary.voxelSizeMm = P.voxel;
 
-    // 1. Per tooth: a band wide enough for the rules, and the distance to the nearby bone.
-    const double exVoxels = std::ceil((std::max(P.gapBridge, wMax) + P.clearance) / P.voxel) + 3;
-    const double inVoxels = std::ceil(eMax / P.voxel) + 3;
-    const double reach = P.gapBridge + 2 * P.voxel;
-    const double udfBand = std::ceil((P.gapBridge + eMax) / P.voxel) + 3;
-    std::vector<ToothWork> teeth;
+    P.far = P.gapBridge + eMax + 2 * P.voxel;
+    P.boneBg = bone.background();
+    auto lap = [&, last = start](const char* name) mutable {
+        const auto now = std::chrono::steady_clock::now();
+        summary.stages.push_back({name, std::chrono::duration<double>(now - last).count(), peakResidentMemoryBytes()});
+        last = now;
+    };
+
+    // 1. Per tooth (in parallel): its band, and tooth / bone distances where a gap can be bridged.
+    // The band must hold the PDL rules: e inside, w + clearance outside (for the bisector).
+    const double exVoxels = std::ceil((wMax + P.clearance) / P.voxel - 1e-9);
+    const double inVoxels = std::ceil(eMax / P.voxel - 1e-9);
+    std::vector<ToothWork> teeth(teethIn.size());
     {
         ProgressStage stage(progress, "carve: tooth bands");
-        int done = 0;
-        for (const auto& [unn, grid] : teethIn) {
-            progress.checkCancelled();
-            ToothWork t;
-            t.unn = unn;
-            t.toothL = toothLabel(unn);
-            t.pdlL = pdlLabel(unn);
-            if (bandHalfWidthMm(*grid) >= std::max(exVoxels, inVoxels) * P.voxel - 1e-6)
-                t.T = grid;
-            else
-                t.T = renormalizeLevelSet(*grid, exVoxels, inVoxels, progress);
-            t.box = t.T->evalActiveVoxelBoundingBox();
-            t.U = boneDistanceNearTooth(bone, *t.T, t.box, reach, udfBand);
+        std::vector<std::pair<int, FloatGrid::ConstPtr>> in(teethIn.begin(), teethIn.end());
+        std::atomic<int> done{0};
+        tbb::parallel_for(std::size_t(0), in.size(), [&](std::size_t i) {
+            if (progress.cancelled()) return;
+            ToothWork& t = teeth[i];
+            t.unn = in[i].first;
+            t.toothL = toothLabel(t.unn);
+            t.pdlL = pdlLabel(t.unn);
+            prepareTooth(t, *in[i].second, bone, P, std::max(exVoxels, 1.0), std::max(inVoxels, 1.0));
             if (P.profile) fitProfileAxis(t, P, bone, options);
-            teeth.push_back(std::move(t));
-            stage.update(double(++done) / double(teethIn.size()));
-        }
+            stage.update(double(++done) / double(in.size()));
+        });
+        progress.checkCancelled();
     }
+    lap("tooth bands");
 
     // 2. Labels and bone distance of every voxel near a tooth, in parallel over leaves.
     openvdb::MaskTree nearMask;
@@ -333,16 +331,16 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
                     const Coord c = v.getCoord();
                     double excl = -std::numeric_limits<double>::infinity();
                     double fill = std::numeric_limits<double>::infinity();
-                    double mag = std::numeric_limits<double>::infinity();
                     const float bIn = acc.B.getValue(c);
-                    if (acc.B.isValueOn(c) && std::abs(bIn) < boneBg) mag = std::abs(bIn);
+                    double bAll = bIn < boneBg ? double(bIn) : P.far;
                     for (int k : cand) {
-                        loc[k] = evalLocal(teeth[k], P, acc.T[k], acc.U[k], acc.B, xf, c);
+                        loc[k] = evalLocal(teeth[k], P, acc.T[k], acc.X[k], acc.B, xf, c);
                         excl = std::max(excl, loc[k].excl);
                         fill = std::min(fill, loc[k].fill);
-                        mag = std::min(mag, double(acc.U[k].getValue(c)));
+                        float x;
+                        if (acc.X[k].probeValue(c, x)) bAll = std::min(bAll, double(x));
                     }
-                    const double b = std::max(std::min(bIn < 0 ? -mag : mag, fill), excl);
+                    const double b = std::max(std::min(bAll, fill), excl);
                     Label label = b < 0 ? boneL : kOutsideLabel;
                     bool owned = false;
                     for (int k : cand) {  // teeth first, then PDLs; UNN order breaks exact ties
@@ -361,6 +359,8 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
         });
         progress.checkCancelled();
     }
+
+    lap("label voxels near teeth");
 
     // 3. Assemble the label grid: bone interior, tooth interiors, then the voxels near teeth.
     LabelField field;
@@ -402,6 +402,8 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
             }
         }
     }
+
+    lap("assemble labels");
 
     // 4. Clearance, discretely: no voxel of one tooth or its PDL 26-touches another tooth's.
     std::map<Label, int> ownerOf;
@@ -446,6 +448,8 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
         for (auto n : boneContacts) summary.toothBoneContacts += n;
     }
 
+    lap("clearance");
+
     // 5. Distance grids of teeth and PDLs on each tooth's band, consistent with the labels.
     {
         ProgressStage stage(progress, "carve: region distances");
@@ -468,7 +472,7 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
                     const auto cand = candidates(teeth, lb);
                     for (auto v = leaf.beginValueOn(); v; ++v) {
                         const Coord c = v.getCoord();
-                        const Local l = evalLocal(t, P, acc.T[k], acc.U[k], acc.B, xf, c);
+                        const Local l = evalLocal(t, P, acc.T[k], acc.X[k], acc.B, xf, c);
                         const double bis = bisector(k, cand, acc, c, P.clearance);
                         double tooth = std::max(l.tooth, bis), pdl = std::max(l.pdl, bis);
                         // Voxels dropped by the clearance pass, or won by another tooth on a tie.
@@ -504,6 +508,8 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
         field.distances[boneL] = boneOut;
     }
 
+    lap("region distances");
+
     // 6. Measurements and warnings.
     {
         ProgressStage stage(progress, "carve: measure");
@@ -523,6 +529,7 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
         if (summary.toothBoneContacts)
             summary.warnings.push_back(std::to_string(summary.toothBoneContacts) + " tooth voxels touch bone directly (PDL widening under 2 voxels?)");
     }
+    lap("measure");
     summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return field;
 }

@@ -30,6 +30,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -67,6 +68,13 @@ struct ToothCarveSummary {
     ThicknessStats thickness;    ///< tooth-side PDL interface to bone-side interface, cap excluded
 };
 
+/// Wall time and process peak resident memory at the end of one carving stage.
+struct CarveStageTiming {
+    std::string name;
+    double seconds = 0;
+    std::uint64_t peakMemoryBytes = 0;
+};
+
 struct CarveSummary {
     double voxelSizeMm = 0;
     std::vector<ToothCarveSummary> teeth;
@@ -74,11 +82,13 @@ struct CarveSummary {
     std::size_t toothBoneContacts = 0;       ///< tooth voxels 26-adjacent to bone (should be 0)
     std::vector<std::string> warnings;
     double seconds = 0;
+    std::vector<CarveStageTiming> stages;    ///< in order: tooth bands, labels, assembly, clearance, ...
 };
 
 /// Carves the PDL of every tooth and labels the jaw (see the file comment for the rules).
 /// @param jaw      which bone label to use
-/// @param bone     bone level set (any band >= 1 voxel; grids are widened locally as needed)
+/// @param bone     bone level set (band >= 2 voxels: gap bridging starts from its inner layers; it
+///                 is extended beyond its band only near the teeth, where a gap can be bridged)
 /// @param teeth    UNN -> tooth level set; all grids on one transform (meshToLevelSet with one
 ///                 voxel size); not modified
 /// @param options  thickness, ratio, profile, clearance (CarveOptions)
@@ -86,10 +96,11 @@ struct CarveSummary {
 ///                 bone contact gets no PDL)
 /// @throws Error for mismatched transforms, invalid UNNs or options, a voxel too coarse for the PDL
 ///         (fewer than 2 voxels across); Cancelled when progress is cancelled.
-/// Deterministic regardless of the thread count. Cost: per tooth one re-normalisation of the
-/// tooth band and one unsigned distance to the nearby bone surface (TBB), then one pass over the
-/// voxels near the teeth; memory of the order of the bone grid plus ~20 bytes per voxel within
-/// gapBridge of a tooth.
+/// Deterministic regardless of the thread count. Cost: per tooth (teeth in parallel) a dilation of
+/// its band and a closest-point propagation of tooth and bone distances into the few voxels where a
+/// root-socket gap can be bridged (no re-meshing unless the input band is narrower than the PDL
+/// needs), then passes over the tooth bands (TBB); memory of the order of the bone grid plus the
+/// tooth bands.
 LabelField carveJaw(Jaw jaw, const openvdb::FloatGrid& bone,
                     const std::map<int, openvdb::FloatGrid::ConstPtr>& teeth, const CarveOptions& options,
                     CarveSummary& summary, Progress& progress = noProgress());

@@ -17,6 +17,7 @@ namespace jawmesh {
 namespace {
 
 using openvdb::Coord;
+using openvdb::CoordBBox;
 using openvdb::Vec3d;
 
 const Coord kFace[6] = {Coord(1, 0, 0), Coord(-1, 0, 0), Coord(0, 1, 0), Coord(0, -1, 0), Coord(0, 0, 1), Coord(0, 0, -1)};
@@ -99,29 +100,49 @@ void measureTooth(const LabelField& field, int unn, double capExclusionMm, Tooth
     const openvdb::FloatGrid* toothDist = find(toothL);
     const openvdb::FloatGrid* boneDist = find(boneL);
 
-    // Volumes: tiles count their whole extent.
-    std::size_t toothVoxels = 0, pdlVoxels = 0;
-    for (auto it = labels.tree().cbeginValueOn(); it; ++it) {
-        const Label l = *it;
-        if (l != toothL && l != pdlL) continue;
-        const std::size_t n = it.isVoxelValue() ? 1 : std::size_t(it.getBoundingBox().volume());
-        (l == toothL ? toothVoxels : pdlVoxels) += n;
+    // Where to look: the blocks (leaf-sized) of the box of the tooth's and PDL's distance grids,
+    // or of the whole label grid when they are missing (a field edited by hand). A pass over the
+    // whole jaw per tooth would cost more than the carving.
+    using LeafT = openvdb::Int32Tree::LeafNodeType;
+    const int dim = int(LeafT::DIM);
+    CoordBBox box;
+    const openvdb::FloatGrid* pdlDist = find(pdlL);
+    if (toothDist && pdlDist) {
+        box = toothDist->evalActiveVoxelBoundingBox();
+        box.expand(pdlDist->evalActiveVoxelBoundingBox());
+        // Interior tiles of the tooth lie inside its band's box; one block of margin for neighbours.
+        box.expand(dim);
+    } else {
+        box = labels.evalActiveVoxelBoundingBox();
     }
-    out.toothVolumeMm3 = double(toothVoxels) * voxel3;
-    out.pdlVolumeMm3 = double(pdlVoxels) * voxel3;
+    std::vector<Coord> blocks;
+    if (!box.empty()) {
+        const Coord lo = box.min() & ~(dim - 1);
+        for (int x = lo.x(); x <= box.max().x(); x += dim)
+            for (int y = lo.y(); y <= box.max().y(); y += dim)
+                for (int z = lo.z(); z <= box.max().z(); z += dim) blocks.emplace_back(x, y, z);
+    }
 
-    // Interface points, collected per leaf and concatenated in leaf order (deterministic).
-    openvdb::tree::LeafManager<const openvdb::Int32Tree> leaves(labels.tree());
-    const std::size_t n = leaves.leafCount();
+    // Volumes (tiles count their whole block) and interface points, collected per block and
+    // concatenated in block order (deterministic).
+    const std::size_t n = blocks.size();
     std::vector<std::vector<Vec3d>> toothSide(n), boneSide(n), openSide(n);
-    std::vector<std::size_t> rootFaces(n, 0), toothFaces(n, 0);
+    std::vector<std::size_t> rootFaces(n, 0), toothFaces(n, 0), toothCount(n, 0), pdlCount(n, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
         auto acc = labels.getConstAccessor();
         for (std::size_t li = r.begin(); li != r.end(); ++li) {
-            const auto& leaf = leaves.leaf(li);
+            const LeafT* leafPtr = acc.probeConstLeaf(blocks[li]);
+            if (!leafPtr) {
+                const Label l = acc.getValue(blocks[li]);
+                if (acc.isValueOn(blocks[li]) && (l == toothL || l == pdlL))
+                    (l == toothL ? toothCount : pdlCount)[li] += std::size_t(LeafT::SIZE);
+                continue;
+            }
+            const auto& leaf = *leafPtr;
             for (auto v = leaf.cbeginValueOn(); v; ++v) {
                 const Label l = *v;
                 if (l != toothL && l != pdlL) continue;
+                ++(l == toothL ? toothCount : pdlCount)[li];
                 const Coord p = v.getCoord();
                 for (const auto& d : kFace) {
                     const Coord q = p + d;
@@ -147,8 +168,11 @@ void measureTooth(const LabelField& field, int unn, double capExclusionMm, Tooth
         for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
         return all;
     };
-    std::size_t rf = 0, tf = 0;
-    for (std::size_t i = 0; i < n; ++i) rf += rootFaces[i], tf += toothFaces[i];
+    std::size_t rf = 0, tf = 0, toothVoxels = 0, pdlVoxels = 0;
+    for (std::size_t i = 0; i < n; ++i)
+        rf += rootFaces[i], tf += toothFaces[i], toothVoxels += toothCount[i], pdlVoxels += pdlCount[i];
+    out.toothVolumeMm3 = double(toothVoxels) * voxel3;
+    out.pdlVolumeMm3 = double(pdlVoxels) * voxel3;
     out.rootAreaFraction = tf ? double(rf) / double(tf) : 0.0;
     const auto toothPts = flatten(toothSide);
     const PointHash bonePts(flatten(boneSide), 0.25);

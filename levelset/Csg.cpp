@@ -5,8 +5,13 @@
 #include <openvdb/tools/Composite.h>
 #include <openvdb/tools/LevelSetRebuild.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
 #include <string>
+#include <vector>
 
 namespace jawmesh {
 namespace {
@@ -64,6 +69,29 @@ openvdb::FloatGrid::Ptr csgDifference(const openvdb::FloatGrid& a, const openvdb
 }
 
 namespace {
+openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
+                                               double maxDistanceMm, double seedLimitMm, int side, bool withBand);
+
+/// OpenVDB's mesh -> volume (inside levelSetRebuild) is exact within 2 voxels of the surface
+/// (errors ~0.03 voxel) but up to ~0.5 voxel off farther out (its narrow-band expansion reuses
+/// neighbours' closest primitives). Values beyond 2 voxels are recomputed by closest-point
+/// propagation from the accurate inner layers, on each side. The two sides may have different
+/// widths (the background is the exterior one), so nothing is clamped: the band keeps its extent.
+void repairFarBand(openvdb::FloatGrid& g) {
+    const double voxel = uniformVoxelSizeMm(g);
+    const double inner = 2.0 * voxel * 1.0001;
+    const openvdb::MaskTree band(g.tree(), false, openvdb::TopologyCopy());
+    double maxAbs = 0;
+    for (auto it = g.tree().cbeginValueOn(); it; ++it) maxAbs = std::max(maxAbs, std::abs(double(*it)));
+    if (maxAbs <= inner) return;
+    for (int side : {+1, -1}) {
+        const auto fixed = propagateClosestPoints(g, band, maxAbs + voxel, inner, side, true);
+        auto acc = g.getAccessor();
+        for (auto it = fixed->tree().cbeginValueOn(); it; ++it)
+            if (std::abs(*it) > inner && acc.isValueOn(it.getCoord())) acc.setValueOnly(it.getCoord(), *it);
+    }
+}
+
 openvdb::FloatGrid::Ptr rebuildAt(const openvdb::FloatGrid& grid, double isoMm, double exVoxels, double inVoxels,
                                   Progress& progress) {
     uniformVoxelSizeMm(grid);
@@ -78,6 +106,7 @@ openvdb::FloatGrid::Ptr rebuildAt(const openvdb::FloatGrid& grid, double isoMm, 
         throw Error("level set '" + grid.getName() + "': rebuild failed: " + e.what());
     }
     progress.checkCancelled();
+    repairFarBand(*out);
     return asLevelSet(out, grid);
 }
 }  // namespace
@@ -123,6 +152,96 @@ openvdb::FloatGrid::Ptr openLevelSet(const openvdb::FloatGrid& grid, double radi
     const double mid = std::max(halfWidthVoxels, radiusMm / voxel + 2.0);
     const auto eroded = offsetLevelSet(grid, -radiusMm, mid, progress);
     return offsetLevelSet(*eroded, radiusMm, halfWidthVoxels, progress);
+}
+
+namespace {
+/// Closest-point propagation (see extendExteriorDistance) on the side `side` (+1 outside, -1
+/// inside) of grid, seeded by the one-voxel shell of band voxels with seedLimitMm - voxel <=
+/// side * value <= seedLimitMm, outward into region voxels beyond it; writes side * distance for
+/// voxels off the band, and for band voxels too when withBand. (Seeding the whole band would cost
+/// several times more: every closest-point path leaving the band crosses the shell.)
+openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
+                                               double maxDistanceMm, double seedLimitMm, int side, bool withBand) {
+    using openvdb::Coord;
+    using openvdb::Vec3d;
+    using openvdb::Vec3s;
+    const double voxel = uniformVoxelSizeMm(grid);
+    const float sideF = float(side);
+    const double maxIdx = maxDistanceMm / voxel, max2 = maxIdx * maxIdx;
+    auto out = openvdb::FloatGrid::create(float(maxDistanceMm));
+    out->setTransform(grid.transform().copy());
+    if (!(maxDistanceMm > 0)) return out;
+
+    std::vector<Coord> nbr;
+    for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz)
+                if (dx || dy || dz) nbr.emplace_back(dx, dy, dz);
+
+    // Dijkstra-like order: a voxel is settled when it is the nearest one left in the queue, taking
+    // the closest point it was offered by its settled neighbours. Ties break by coordinate, so the
+    // result is deterministic. (Settling layer by layer instead errs by over half a voxel at 6
+    // voxels from a sphere.)
+    struct Item {
+        float d2;
+        Coord c;
+        Vec3s cp;
+        bool operator>(const Item& o) const { return d2 != o.d2 ? d2 > o.d2 : o.c < c; }
+    };
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    openvdb::FloatTree offered(std::numeric_limits<float>::max());
+    openvdb::MaskTree settled(false);
+    openvdb::tree::ValueAccessor<openvdb::FloatTree> offAcc(offered);
+    openvdb::tree::ValueAccessor<openvdb::MaskTree> doneAcc(settled);
+    openvdb::tree::ValueAccessor<const openvdb::MaskTree> ra(region);
+    auto ga = grid.getConstAccessor();
+    const double seedLimit = seedLimitMm, seedLow = seedLimitMm - voxel;
+    for (auto leaf = region.cbeginLeaf(); leaf; ++leaf) {
+        const auto* gl = grid.tree().probeConstLeaf(leaf->origin());
+        if (!gl) continue;
+        for (auto v = gl->cbeginValueOn(); v; ++v) {
+            const double d = *v;
+            if (side * d > seedLimit || side * d < seedLow) continue;
+            const Coord c = v.getCoord();
+            const Vec3d g(ga.getValue(c.offsetBy(1, 0, 0)) - ga.getValue(c.offsetBy(-1, 0, 0)),
+                          ga.getValue(c.offsetBy(0, 1, 0)) - ga.getValue(c.offsetBy(0, -1, 0)),
+                          ga.getValue(c.offsetBy(0, 0, 1)) - ga.getValue(c.offsetBy(0, 0, -1)));
+            const double len = g.length();
+            if (!(len > 1e-6 * voxel)) continue;
+            const Vec3d p = c.asVec3d() - (d / voxel) * (g / len);
+            const float d2 = float((d / voxel) * (d / voxel));
+            offAcc.setValue(c, d2);
+            queue.push({d2, c, Vec3s(p)});
+        }
+    }
+    auto outAcc = out->getAccessor();
+    while (!queue.empty()) {
+        const Item it = queue.top();
+        queue.pop();
+        if (doneAcc.isValueOn(it.c)) continue;
+        doneAcc.setValueOn(it.c);
+        if (withBand || !ga.isValueOn(it.c)) outAcc.setValue(it.c, sideF * float(std::sqrt(double(it.d2)) * voxel));
+        const Vec3d p(it.cp);
+        for (const Coord& o : nbr) {
+            const Coord q = it.c + o;
+            if (doneAcc.isValueOn(q) || !ra.isValueOn(q) || !(sideF * ga.getValue(q) > seedLow)) continue;
+            const float d2 = float((q.asVec3d() - p).lengthSqr());
+            if (!(d2 <= max2) || !(d2 < offAcc.getValue(q))) continue;
+            offAcc.setValue(q, d2);
+            queue.push({d2, q, it.cp});
+        }
+    }
+    out->setGridClass(openvdb::GRID_LEVEL_SET);
+    return out;
+}
+
+}  // namespace
+
+openvdb::FloatGrid::Ptr extendExteriorDistance(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
+                                               double maxDistanceMm) {
+    const double voxel = uniformVoxelSizeMm(grid);
+    const double bg = bandHalfWidthMm(grid);
+    return propagateClosestPoints(grid, region, maxDistanceMm, bg - voxel * 1.0001, +1, false);
 }
 
 }  // namespace jawmesh

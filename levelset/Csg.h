@@ -5,9 +5,12 @@
 //
 // Accuracy: union / intersection / difference are min / max of the inputs, exact on the zero set
 // and equal to the true signed distance away from creases. offset / close / open / renormalize
-// rebuild the band from the iso-surface (OpenVDB's volume -> mesh -> exact distance, i.e. the
-// "sdf -> surface -> sdf" route), so their values are true distances to the marching-cubes surface
-// (errors a few hundredths of a voxel on smooth shapes), whatever the width of the input band.
+// rebuild the band from the iso-surface (OpenVDB's volume -> mesh -> distance, i.e. the
+// "sdf -> surface -> sdf" route). OpenVDB's distances are exact only within ~2 voxels of the
+// surface (up to ~0.5 voxel off beyond: its band expansion reuses neighbours' closest triangles),
+// so the band beyond 2 voxels is recomputed by closest-point propagation (as in
+// extendExteriorDistance): errors about a tenth of a voxel on smooth shapes, whatever the width of
+// the input band.
 #pragma once
 
 #include "io/Progress.h"
@@ -54,6 +57,24 @@ openvdb::FloatGrid::Ptr closeLevelSet(const openvdb::FloatGrid& grid, double rad
 /// and bridges thinner than 2 * radiusMm. Cost: two offsets.
 openvdb::FloatGrid::Ptr openLevelSet(const openvdb::FloatGrid& grid, double radiusMm,
                                      double halfWidthVoxels = 3.0, Progress& progress = noProgress());
+
+/// Exterior distances beyond the band of a level set, computed only where they are needed: for every
+/// voxel of `region` that lies outside the surface of `grid` and is reachable from the band through
+/// region voxels, the Euclidean distance (mm) to the zero set of `grid`, up to maxDistanceMm.
+/// Method: closest-point propagation (a vector distance transform). Every band voxel of grid with
+/// |value| <= background - 1 voxel, in a leaf that region touches, is a seed whose closest surface
+/// point is x - value * grad / |grad|; layer by layer (26-neighbourhood), each new voxel takes the
+/// nearest of its already reached neighbours' closest points (Jacobi per layer, so the result does
+/// not depend on visiting order). Errors stay a small fraction of a voxel on smooth surfaces.
+/// @param grid           level set (band >= 2 voxels for accurate seeds), not modified
+/// @param region         voxels where distances are wanted (leaf voxels; tiles are ignored)
+/// @param maxDistanceMm  propagation stops beyond this distance
+/// @returns a grid on grid's transform whose active voxels are the computed voxels outside the band
+///          of grid (band voxels keep their own, exact values in grid); background maxDistanceMm.
+/// Throws Error for a grid that is not a level set. Cost: one serial pass over the region voxels
+/// reached (26 neighbour look-ups each); call it on several grids in parallel.
+openvdb::FloatGrid::Ptr extendExteriorDistance(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
+                                               double maxDistanceMm);
 
 /// Half width of the band of a level set in mm (its background value). Throws Error when the grid
 /// has a non-positive background (not a level set).

@@ -61,9 +61,13 @@ openvdb::FloatGrid::Ptr unsignedBand(const std::vector<openvdb::Vec3s>& points, 
 
 // True for triangles with the same sign on both sides (the inner walls of overlapping shells, a
 // pulp inside its tooth, stray fins outside): they bound nothing, but the unsigned distance
-// would make a spurious near-zero band around them. Sides are probed 1.5 voxels off the centroid.
-std::vector<char> findNonBoundaryTriangles(const openvdb::FloatGrid& grid, const std::vector<Vec3>& indexVertices,
-                                           const std::vector<Tri>& triangles, std::size_t& count) {
+// would make a spurious near-zero band around them. Candidates are found on the signed grid
+// (same sign 1.5 voxels off both faces), which also flags the faces of plates thinner than 3
+// voxels, so each candidate is confirmed with Embree lines 0.01 voxel off both faces.
+std::vector<char> findNonBoundaryTriangles(const openvdb::FloatGrid& grid, const OrientedSurface& surface,
+                                           const std::vector<Vec3>& indexVertices, double voxelSizeMm,
+                                           std::size_t& count) {
+    const auto& triangles = surface.triangles;
     std::vector<char> internal(triangles.size(), 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
         auto acc = grid.getConstAccessor();
@@ -81,6 +85,28 @@ std::vector<char> findNonBoundaryTriangles(const openvdb::FloatGrid& grid, const
             internal[t] = signAt(m + 1.5 * n) == signAt(m - 1.5 * n);
         }
     });
+    if (std::find(internal.begin(), internal.end(), char(1)) != internal.end()) {
+        const LineWindingQuery query(surface.vertices, triangles, {});
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t t = r.begin(); t < r.end(); ++t) {
+                if (!internal[t]) continue;
+                const Vec3& a = surface.vertices[static_cast<std::size_t>(triangles[t][0])];
+                const Vec3& b = surface.vertices[static_cast<std::size_t>(triangles[t][1])];
+                const Vec3& c = surface.vertices[static_cast<std::size_t>(triangles[t][2])];
+                const Vec3 n = (b - a).cross(c - a).normalized() * (0.01 * voxelSizeMm);
+                const Vec3 m = (a + b + c) / 3.0;
+                int same = 0, differ = 0;
+                for (int k = 0; k < 5 && same < 2 && differ < 2; ++k) {
+                    const Vec3 d = LineWindingQuery::genericDirection(static_cast<int>(t % 64) + k);
+                    const auto front = query.windingAlongLine(m + n, d);
+                    const auto back = query.windingAlongLine(m - n, d);
+                    if (!front || !back) continue;
+                    ((*front >= 1) == (*back >= 1) ? same : differ) += 1;
+                }
+                internal[t] = same >= 2;
+            }
+        });
+    }
     count = static_cast<std::size_t>(std::count(internal.begin(), internal.end(), char(1)));
     return internal;
 }
@@ -244,7 +270,7 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
     // 7. Triangles inside the union (or outside everything) must not shape the distance: if there
     // are enough of them to matter, the band is recomputed from the boundary triangles alone and
     // takes its signs from the grid above (its band contains the new one).
-    const std::vector<char> internal = findNonBoundaryTriangles(*grid, indexVertices, oriented.triangles, stats.internalTriangles);
+    const std::vector<char> internal = findNonBoundaryTriangles(*grid, oriented, indexVertices, voxelSizeMm, stats.internalTriangles);
     constexpr std::size_t kMinInternal = 16;
     if (stats.internalTriangles >= kMinInternal && stats.internalTriangles < oriented.triangles.size()) {
         std::vector<openvdb::Vec3I> boundary;

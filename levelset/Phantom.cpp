@@ -73,7 +73,7 @@ void writePhantomCase(const std::vector<PhantomJaw>& jaws, const std::string& ca
         const fs::path teethDir = dir / "teeth";
         std::error_code ec;
         if (fs::is_directory(teethDir, ec)) {
-            const std::regex toothFile(R"(tooth_(\d+)\.(stl|obj|ply|off))", std::regex::icase);
+            const std::regex toothFile(R"(tooth_(\d{1,3})\.(stl|obj|ply|off))", std::regex::icase);
             for (const auto& entry : fs::directory_iterator(teethDir)) {
                 std::smatch m;
                 const std::string file = entry.path().filename().string();

@@ -255,13 +255,6 @@ std::size_t keepLabeled(TetMesh& m) {
 
 double tetVolumeForEdge(double edgeMm) { return edgeMm * edgeMm * edgeMm / (6.0 * std::sqrt(2.0)); }
 
-int interfaceMarker(Label a, Label b) {
-    const Label lo = std::min(a, b), hi = std::max(a, b);
-    return lo * 1024 + hi;
-}
-
-std::array<Label, 2> interfacePairFromMarker(int marker) { return {marker / 1024, marker % 1024}; }
-
 TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, Progress& progress, TetStats* stats) {
     ProgressStage stage(progress, "tetrahedralize");
     checkComplex(plc);

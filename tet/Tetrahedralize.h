@@ -47,10 +47,6 @@ struct TetStats {
 /// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.
 double tetVolumeForEdge(double edgeMm);
 
-/// TetGen facet marker encoding the label pair of an interface triangle: lo * 1024 + hi with
-/// lo < hi, so it is > 0 and unique for every pair. interfacePairFromMarker inverts it.
-int interfaceMarker(Label a, Label b);
-std::array<Label, 2> interfacePairFromMarker(int marker);
 
 /// Note on -Y: TetGen cannot refine a region that is one tet thick between preserved facets (a
 /// thin PDL), so there the interface triangle size sets the element size; with

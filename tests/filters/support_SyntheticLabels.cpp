@@ -56,15 +56,12 @@ SyntheticField sampleField(const std::vector<AnalyticRegion>& regions, const Vec
             for (int k = cmin.z(); k <= cmax.z(); ++k) {
                 const Vec3 p(i * voxel, j * voxel, k * voxel);
                 const openvdb::Coord c(i, j, k);
-                bool labelled = false;
+                const Label L = s.labelAt(p);  // first region with sdf < 0 wins
+                if (L != kOutsideLabel) lacc.setValue(c, L);
                 for (std::size_t r = 0; r < regions.size(); ++r) {
                     // a region's own distance, restricted to where earlier regions do not win
                     double d = regions[r].sdf(p);
                     for (std::size_t q = 0; q < r; ++q) d = std::max(d, -regions[q].sdf(p));
-                    if (d < 0.0 && !labelled) {
-                        lacc.setValue(c, regions[r].label);
-                        labelled = true;
-                    }
                     const float f = float(std::clamp(d, -double(band), double(band)));
                     if (std::abs(d) < band) dacc[r].setValue(c, f);
                     else if (d < 0.0) dacc[r].setValueOff(c, -band);

@@ -39,7 +39,9 @@ TEST(SlowCarve, OpenMandibleMeetsThePdlTargets) {
     const auto start = std::chrono::steady_clock::now();
     const LabelField field = carveJaw(surfaces.jaw, *bone, teeth, options, summary);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << "carve seconds " << seconds << "\n";
+    std::cout << "carve seconds " << seconds << " (speed is measured by bench/carve.sh)\n";
+    for (const auto& st : summary.stages)
+        std::cout << "  " << st.name << " " << st.seconds << " s, peak " << (st.peakMemoryBytes >> 20) << " MB\n";
     for (const auto& w : summary.warnings) std::cout << "warning: " << w << "\n";
 
     ASSERT_EQ(summary.teeth.size(), 14u);
@@ -97,5 +99,4 @@ TEST(SlowCarve, OpenMandibleMeetsThePdlTargets) {
     }
     EXPECT_EQ(contacts, 0u);
     EXPECT_EQ(summary.toothBoneContacts, 0u);
-    EXPECT_LE(seconds, 60.0);  // target 15 s on an idle machine; reported above
 }

@@ -4,6 +4,7 @@
 #include "levelset/Csg.h"
 
 #include <openvdb/tools/LevelSetSphere.h>
+#include <openvdb/tools/Morphology.h>
 
 #include <gtest/gtest.h>
 
@@ -104,6 +105,33 @@ TEST(Csg, ClosingFillsANarrowGapOpeningRemovesASmallBall) {
     EXPECT_LT(at(*both, Vec3d(2.0, 0, 0)), 0.0f);
     EXPECT_GT(at(*opened, Vec3d(2.0, 0, 0)), 0.0f);
     EXPECT_NEAR(at(*opened, Vec3d(-1.0, 0, 0)), 0.0, 0.2 * kVoxel);
+}
+
+TEST(Csg, ExtendExteriorDistanceIsEuclideanInsideTheRegionOnly) {
+    const Vec3d c(0.1, 0.0, -0.2);
+    const auto s = sphere(1.0, c);
+    // Region: the band dilated by 10 voxels, cut to the half space x > 0.
+    openvdb::MaskTree region(s->tree(), false, openvdb::TopologyCopy());
+    openvdb::tools::dilateActiveValues(region, 10, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
+    openvdb::MaskTree half(false);
+    half.fill(openvdb::CoordBBox(openvdb::Coord(0, -100, -100), openvdb::Coord(100, 100, 100)), true, true);
+    half.voxelizeActiveTiles();
+    region.topologyIntersection(half);
+    const auto x = extendExteriorDistance(*s, region, 0.4);
+    EXPECT_NEAR(x->background(), 0.4, 1e-6);
+    std::size_t n = 0;
+    double err = 0, far = 0;
+    for (auto it = x->tree().cbeginValueOn(); it; ++it, ++n) {
+        const Vec3d p = x->transform().indexToWorld(it.getCoord());
+        EXPECT_GE(p[0], -1e-9) << "outside the region";
+        EXPECT_FALSE(s->tree().isValueOn(it.getCoord())) << "band voxels keep their own values";
+        err = std::max(err, std::abs(double(*it) - sphereSdf(p, c, 1.0)));
+        far = std::max(far, double(*it));
+    }
+    EXPECT_GT(n, 10000u);
+    EXPECT_LT(err, 0.1 * kVoxel);
+    EXPECT_LE(far, 0.4 + 1e-6);
+    EXPECT_GT(far, 0.4 - kVoxel);
 }
 
 TEST(Csg, RejectsMismatchedTransforms) {

@@ -7,9 +7,8 @@
 
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/MeshToVolume.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -155,6 +154,7 @@ TEST_F(PhantomTest, SurfacesAreClosedOrientedWithPositiveVolume) {
 }
 
 TEST_F(PhantomTest, CrownsStandAboveTheBoneAndRootsTouchIt) {
+    double worstContact = 1.0;
     for (const PhantomJaw& jaw : jaws()) {
         const VertexIndex bone(jaw.bone.vertices, jaw.voxelSizeMm);
         for (const auto& [unn, m] : jaw.teeth) {
@@ -178,27 +178,59 @@ TEST_F(PhantomTest, CrownsStandAboveTheBoneAndRootsTouchIt) {
             }
             ASSERT_GT(roots, 50u);
             EXPECT_GE(static_cast<double>(touching) / roots, 0.95) << "tooth " << unn;
+            worstContact = std::min(worstContact, static_cast<double>(touching) / roots);
         }
     }
+    std::printf("[phantom] worst share of root vertices within a voxel of the bone: %.3f\n", worstContact);
+}
+
+double segmentDistance(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 d = b - a;
+    const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (p - a - t * d).norm();
+}
+double triangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 n = (b - a).cross(c - a);
+    if (n.squaredNorm() > 0) {
+        const Vec3 q = p - n * ((p - a).dot(n) / n.squaredNorm());
+        if ((b - a).cross(q - a).dot(n) >= 0 && (c - b).cross(q - b).dot(n) >= 0 && (a - c).cross(q - c).dot(n) >= 0)
+            return (p - q).norm();
+    }
+    return std::min({segmentDistance(p, a, b), segmentDistance(p, b, c), segmentDistance(p, c, a)});
+}
+
+// Smallest distance from B's vertices to A's triangles, by brute force over where the two
+// (0.5 mm-padded) boxes overlap; +infinity when they do not.
+double closestApproach(const SurfaceMesh& a, const SurfaceMesh& b) {
+    BBox box;
+    const BBox ba = boundingBox(a), bb = boundingBox(b);
+    box.min = ba.min.cwiseMax(bb.min) - Vec3::Constant(0.5);
+    box.max = ba.max.cwiseMin(bb.max) + Vec3::Constant(0.5);
+    auto inside = [&](const Vec3& p) { return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all(); };
+    std::vector<Tri> near;
+    for (const Tri& t : a.triangles)
+        if (inside(a.vertices[t[0]]) || inside(a.vertices[t[1]]) || inside(a.vertices[t[2]])) near.push_back(t);
+    double closest = std::numeric_limits<double>::infinity();
+    for (const Vec3& p : b.vertices)
+        if (inside(p))
+            for (const Tri& t : near) closest = std::min(closest, triangleDistance(p, a.vertices[t[0]], a.vertices[t[1]], a.vertices[t[2]]));
+    return closest;
 }
 
 TEST_F(PhantomTest, AdjacentTeethAreAtLeast0_3mmApart) {
     for (const PhantomJaw& jaw : jaws()) {
+        double smallest = std::numeric_limits<double>::infinity();
         for (auto it = jaw.teeth.begin(); std::next(it) != jaw.teeth.end(); ++it) {
             const auto& [unnA, a] = *it;
             const auto& [unnB, b] = *std::next(it);
-            const double voxel = 0.05;
-            auto xform = openvdb::math::Transform::createLinearTransform(voxel);
-            std::vector<openvdb::Vec3s> pts;
-            std::vector<openvdb::Vec3I> tris;
-            for (const Vec3& p : a.vertices) pts.push_back(xform->worldToIndex(openvdb::Vec3d(p.x(), p.y(), p.z())));
-            for (const Tri& t : a.triangles) tris.emplace_back(t[0], t[1], t[2]);
-            const auto grid = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, pts, tris, 10.0f);
-            openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*grid);
-            double closest = std::numeric_limits<double>::infinity();
-            for (const Vec3& p : b.vertices) closest = std::min(closest, static_cast<double>(sampler.wsSample(openvdb::Vec3d(p.x(), p.y(), p.z()))));
-            EXPECT_GE(closest, 0.3) << "teeth " << unnA << " and " << unnB;
+            // Both ways: vertices of each against the other's triangles.
+            const double gap = std::min(closestApproach(a, b), closestApproach(b, a));
+            EXPECT_GE(gap, 0.3) << "teeth " << unnA << " and " << unnB;
+            smallest = std::min(smallest, gap);
+            // Consecutive UNNs are neighbours on the arch (the test is not vacuous).
+            EXPECT_LT((jaw.axes.at(unnA).crownCentre - jaw.axes.at(unnB).crownCentre).norm(), 13.0);
         }
+        std::printf("[phantom] %s: smallest gap between adjacent teeth %.2f mm\n", jawName(jaw.jaw).c_str(), smallest);
     }
 }
 
@@ -248,15 +280,19 @@ TEST_F(PhantomTest, JawsFaceEachOtherWithAGap) {
         for (const Vec3& p : m.vertices) upperBottom = std::min(upperBottom, p.z());
     EXPECT_GT(upperBottom - lowerTop, 0.5);
     EXPECT_LT(upperBottom - lowerTop, 5.0);
-    // Arch like a real mandible: ~50 mm wide at the first molars, ~45 mm deep.
+    // Arch like a real mandible: ~50 mm wide at the first molars, ~45 mm deep (central incisors to
+    // second molars).
+    const auto& lower = jaws()[0].axes;
+    const double molarWidth = (lower.at(19).crownCentre - lower.at(30).crownCentre).norm();
+    EXPECT_GT(molarWidth, 40.0);
+    EXPECT_LT(molarWidth, 55.0);
+    const double depth = 0.5 * (lower.at(18).crownCentre + lower.at(31).crownCentre).y() -
+                         0.5 * (lower.at(24).crownCentre + lower.at(25).crownCentre).y();
+    EXPECT_GT(depth, 30.0);
+    EXPECT_LT(depth, 50.0);
     const BBox arch = boundingBox(jaws()[0].bone);
     EXPECT_GT(arch.size().x(), 50.0);
     EXPECT_LT(arch.size().x(), 80.0);
-    EXPECT_GT(arch.size().y(), 40.0);
-    EXPECT_LT(arch.size().y(), 70.0);
-    const double molarWidth = (jaws()[0].axes.at(19).crownCentre - jaws()[0].axes.at(30).crownCentre).norm();
-    EXPECT_GT(molarWidth, 40.0);
-    EXPECT_LT(molarWidth, 55.0);
 }
 
 TEST(Phantom, KeepsTheTeethNearestTheMidline) {
@@ -298,7 +334,7 @@ TEST(Phantom, SameSeedSameFilesOtherSeedOtherFiles) {
         return dir / "input" / "mandible";
     };
     const auto a = write(7, "phantom-seed-a"), b = write(7, "phantom-seed-b"), c = write(8, "phantom-seed-c");
-    for (const std::string f : {"bone/mandible.stl", "teeth/tooth_24.stl", "teeth/tooth_22.stl", "teeth_axes_mandible.json"}) {
+    for (const std::string f : {"bone/mandible.stl", "teeth/tooth_24.stl", "teeth/tooth_23.stl", "teeth_axes_mandible.json"}) {
         ASSERT_TRUE(std::filesystem::exists(a / f)) << f;
         EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
         EXPECT_NE(slurp(a / f), slurp(c / f)) << f;
