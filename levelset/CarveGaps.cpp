@@ -17,6 +17,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace jawmesh {
@@ -78,6 +79,9 @@ inline double signedBone(FloatAcc& B, FloatAcc& X, const Params& P, const Coord&
     return b >= P.boneBg ? P.far : b;
 }
 
+/// The next double below x: turns "x <= 0" into the strict test "below(x) < 0".
+inline double below(double x) { return std::nextafter(x, -std::numeric_limits<double>::infinity()); }
+
 /// What one tooth's rules say at one voxel (before the clearance between teeth).
 struct Local {
     double T = 0;      ///< tooth distance
@@ -108,10 +112,12 @@ Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& X, F
         gap = std::max(gap, (dot + kFacingCos) * P.gapBridge);
     }
     const double socket = std::min(b - e, gap);  // < 0: in the socket of this tooth
-    r.tooth = std::max(r.T, std::min(r.T + e, -socket));
+    // Exact ties (input bands sampled exactly at T = -e, T = w or on the cap) must land in exactly
+    // one region, or they leave a void: the tooth takes T = -e and the cap, the bone takes T = w.
+    r.tooth = std::max(r.T, std::min(below(r.T + e), below(-socket)));
     r.pdl = std::max({r.T - w, -(r.T + e), socket});
     r.fill = std::max(-r.T, gap);
-    r.excl = w - r.T;
+    r.excl = below(w - r.T);
     return r;
 }
 

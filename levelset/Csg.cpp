@@ -70,7 +70,8 @@ openvdb::FloatGrid::Ptr csgDifference(const openvdb::FloatGrid& a, const openvdb
 
 namespace {
 openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
-                                               double maxDistanceMm, double seedLimitMm, int side, bool withBand);
+                                               double maxDistanceMm, double seedLowMm, double seedHighMm, int side,
+                                               bool withBand);
 
 /// OpenVDB's mesh -> volume (inside levelSetRebuild) is exact within 2 voxels of the surface
 /// (errors ~0.03 voxel) but up to ~0.5 voxel off farther out (its narrow-band expansion reuses
@@ -85,7 +86,7 @@ void repairFarBand(openvdb::FloatGrid& g) {
     for (auto it = g.tree().cbeginValueOn(); it; ++it) maxAbs = std::max(maxAbs, std::abs(double(*it)));
     if (maxAbs <= inner) return;
     for (int side : {+1, -1}) {
-        const auto fixed = propagateClosestPoints(g, band, maxAbs + voxel, inner, side, true);
+        const auto fixed = propagateClosestPoints(g, band, maxAbs + voxel, -inner, inner, side, true);
         auto acc = g.getAccessor();
         for (auto it = fixed->tree().cbeginValueOn(); it; ++it)
             if (std::abs(*it) > inner && acc.isValueOn(it.getCoord())) acc.setValueOnly(it.getCoord(), *it);
@@ -156,12 +157,14 @@ openvdb::FloatGrid::Ptr openLevelSet(const openvdb::FloatGrid& grid, double radi
 
 namespace {
 /// Closest-point propagation (see extendExteriorDistance) on the side `side` (+1 outside, -1
-/// inside) of grid, seeded by the one-voxel shell of band voxels with seedLimitMm - voxel <=
-/// side * value <= seedLimitMm, outward into region voxels beyond it; writes side * distance for
-/// voxels off the band, and for band voxels too when withBand. (Seeding the whole band would cost
-/// several times more: every closest-point path leaving the band crosses the shell.)
+/// inside) of grid, seeded by the band voxels with seedLowMm <= side * value <= seedHighMm, into
+/// region voxels with side * value > max(seedLowMm, 0); writes side * distance for voxels off the
+/// band, and for band voxels too when withBand. A thin seed shell is several times cheaper than
+/// the whole band (every path leaving the band crosses it) but less accurate near the shell
+/// (~0.25 voxel instead of ~0.12: the lattice samples the closest points more sparsely).
 openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
-                                               double maxDistanceMm, double seedLimitMm, int side, bool withBand) {
+                                               double maxDistanceMm, double seedLowMm, double seedHighMm, int side,
+                                               bool withBand) {
     using openvdb::Coord;
     using openvdb::Vec3d;
     using openvdb::Vec3s;
@@ -195,7 +198,8 @@ openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, c
     openvdb::tree::ValueAccessor<openvdb::MaskTree> doneAcc(settled);
     openvdb::tree::ValueAccessor<const openvdb::MaskTree> ra(region);
     auto ga = grid.getConstAccessor();
-    const double seedLimit = seedLimitMm, seedLow = seedLimitMm - voxel;
+    const double seedLimit = seedHighMm, seedLow = seedLowMm;
+    const float outward = float(std::max(seedLowMm, 0.0));
     for (auto leaf = region.cbeginLeaf(); leaf; ++leaf) {
         const auto* gl = grid.tree().probeConstLeaf(leaf->origin());
         if (!gl) continue;
@@ -224,7 +228,7 @@ openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, c
         const Vec3d p(it.cp);
         for (const Coord& o : nbr) {
             const Coord q = it.c + o;
-            if (doneAcc.isValueOn(q) || !ra.isValueOn(q) || !(sideF * ga.getValue(q) > seedLow)) continue;
+            if (doneAcc.isValueOn(q) || !ra.isValueOn(q) || !(sideF * ga.getValue(q) > outward)) continue;
             const float d2 = float((q.asVec3d() - p).lengthSqr());
             if (!(d2 <= max2) || !(d2 < offAcc.getValue(q))) continue;
             offAcc.setValue(q, d2);
@@ -241,7 +245,8 @@ openvdb::FloatGrid::Ptr extendExteriorDistance(const openvdb::FloatGrid& grid, c
                                                double maxDistanceMm) {
     const double voxel = uniformVoxelSizeMm(grid);
     const double bg = bandHalfWidthMm(grid);
-    return propagateClosestPoints(grid, region, maxDistanceMm, bg - voxel * 1.0001, +1, false);
+    // Seeds: the outermost reliable shell of the band (central differences stay inside the band).
+    return propagateClosestPoints(grid, region, maxDistanceMm, bg - 2.0001 * voxel, bg - 1.0001 * voxel, +1, false);
 }
 
 }  // namespace jawmesh

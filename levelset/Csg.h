@@ -61,18 +61,20 @@ openvdb::FloatGrid::Ptr openLevelSet(const openvdb::FloatGrid& grid, double radi
 /// Exterior distances beyond the band of a level set, computed only where they are needed: for every
 /// voxel of `region` that lies outside the surface of `grid` and is reachable from the band through
 /// region voxels, the Euclidean distance (mm) to the zero set of `grid`, up to maxDistanceMm.
-/// Method: closest-point propagation (a vector distance transform). Every band voxel of grid with
-/// |value| <= background - 1 voxel, in a leaf that region touches, is a seed whose closest surface
-/// point is x - value * grad / |grad|; layer by layer (26-neighbourhood), each new voxel takes the
-/// nearest of its already reached neighbours' closest points (Jacobi per layer, so the result does
-/// not depend on visiting order). Errors stay a small fraction of a voxel on smooth surfaces.
+/// Method: closest-point propagation (a vector distance transform). The band voxels of grid with
+/// background - 2 voxels <= value <= background - 1 voxel, in leaves that region touches, are seeds
+/// whose closest surface point is x - value * grad / |grad|; voxels are then settled in order of
+/// distance (Dijkstra-like, 26-neighbourhood, ties broken by coordinate, so the result does not
+/// depend on anything but the inputs), each taking the nearest of the closest points offered by its
+/// settled neighbours. Errors: about a quarter of a voxel next to the band, less farther out, on
+/// smooth surfaces (enough to decide gaps; not a substitute for an exact band).
 /// @param grid           level set (band >= 2 voxels for accurate seeds), not modified
 /// @param region         voxels where distances are wanted (leaf voxels; tiles are ignored)
 /// @param maxDistanceMm  propagation stops beyond this distance
 /// @returns a grid on grid's transform whose active voxels are the computed voxels outside the band
 ///          of grid (band voxels keep their own, exact values in grid); background maxDistanceMm.
-/// Throws Error for a grid that is not a level set. Cost: one serial pass over the region voxels
-/// reached (26 neighbour look-ups each); call it on several grids in parallel.
+/// Throws Error for a grid that is not a level set. Cost: serial, O(n log n) in the region voxels
+/// reached plus the seeds (26 neighbour look-ups each); call it on several grids in parallel.
 openvdb::FloatGrid::Ptr extendExteriorDistance(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
                                                double maxDistanceMm);
 
