@@ -1,12 +1,11 @@
 #include "levelset/CarveGaps.h"
 
 #include "io/Error.h"
+#include "io/ResourceUsage.h"
 #include "levelset/CarveMeasure.h"
 #include "levelset/Csg.h"
 
 #include <Eigen/Eigenvalues>
-#include "io/ResourceUsage.h"
-
 #include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/Morphology.h>
@@ -47,7 +46,6 @@ struct Params {
     double gapBridge = 0.5;
     double clearance = 0.05;
     double far = 0.7;     ///< distances beyond the gap-bridging reach are reported as this (mm)
-    float boneBg = 0.15f; ///< background of the input bone grid
 };
 
 /// Per-tooth working data.
@@ -70,13 +68,14 @@ double thicknessAt(const ToothWork& t, const Params& P, const Vec3d& world) {
     return pdlThicknessAt(*P.profile, s);
 }
 
-/// Signed bone distance: the input band, else the tooth's extension X (exterior voxels within
-/// reach), else "far" outside and the clamped band value inside (deep bone is in the socket anyway).
+/// Signed bone distance: the tooth's extension X (exterior voxels within reach), else the input
+/// band (active voxels are exact even at |value| = background), else "far" outside and the
+/// clamped value inside (deep bone is in the socket anyway).
 inline double signedBone(FloatAcc& B, FloatAcc& X, const Params& P, const Coord& c) {
     float v;
     if (X.probeValue(c, v)) return v;
-    const float b = B.getValue(c);
-    return b >= P.boneBg ? P.far : b;
+    if (B.probeValue(c, v)) return v;  // band: exact, even at |v| = background
+    return v > 0 ? P.far : v;
 }
 
 /// The next double below x: turns "x <= 0" into the strict test "below(x) < 0".
@@ -171,8 +170,13 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     // Bone distances are not needed deeper in the tooth than e (there it is tooth whatever B is).
     const double eMax = P.ratio * (P.profile ? std::max({P.profile->cervical, P.profile->midRoot, P.profile->apical})
                                              : P.uniformThickness);
-    const auto deep = openvdb::tools::sdfInteriorMask(*T, float(-(eMax + P.voxel)));
-    near.topologyDifference(deep->tree());
+    {
+        const float deep = float(-(eMax + P.voxel));
+        auto ta = T->getConstAccessor();
+        for (auto leaf = near.beginLeaf(); leaf; ++leaf)
+            for (openvdb::Index i = 0; i < openvdb::MaskTree::LeafNodeType::SIZE; ++i)
+                if (leaf->isValueOn(i) && ta.getValue(leaf->offsetToGlobalCoord(i)) < deep) leaf->setValueOff(i);
+    }
     t.X = extendExteriorDistance(bone, near, P.far);
     openvdb::MaskTree nearBone(t.X->tree(), false, openvdb::TopologyCopy());
     for (auto leaf = near.cbeginLeaf(); leaf; ++leaf)
@@ -284,7 +288,6 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
     summary.voxelSizeMm = P.voxel;
 
     P.far = P.gapBridge + eMax + 2 * P.voxel;
-    P.boneBg = bone.background();
     auto lap = [&, last = start](const char* name) mutable {
         const auto now = std::chrono::steady_clock::now();
         summary.stages.push_back({name, std::chrono::duration<double>(now - last).count(), peakResidentMemoryBytes()});
@@ -337,8 +340,8 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
                     const Coord c = v.getCoord();
                     double excl = -std::numeric_limits<double>::infinity();
                     double fill = std::numeric_limits<double>::infinity();
-                    const float bIn = acc.B.getValue(c);
-                    double bAll = bIn < boneBg ? double(bIn) : P.far;
+                    float bIn;
+                    double bAll = (acc.B.probeValue(c, bIn) || bIn < 0) ? double(bIn) : P.far;
                     for (int k : cand) {
                         loc[k] = evalLocal(teeth[k], P, acc.T[k], acc.X[k], acc.B, xf, c);
                         excl = std::max(excl, loc[k].excl);
