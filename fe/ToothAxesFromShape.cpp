@@ -1,0 +1,180 @@
+#include "fe/ToothAxesFromShape.h"
+
+#include "io/Error.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+namespace jawmesh {
+namespace {
+
+/// Volume, first and second moments of the region bounded by triangles, from tets to `origin`.
+struct Moments {
+    double volume = 0;
+    Vec3 first = Vec3::Zero();                     ///< integral of (x - origin)
+    Eigen::Matrix3d second = Eigen::Matrix3d::Zero();  ///< integral of (x - origin)(x - origin)^T
+    void addTriangle(const Vec3& a, const Vec3& b, const Vec3& c) {
+        const double v = a.dot(b.cross(c)) / 6.0;
+        const Vec3 s = a + b + c;
+        volume += v;
+        first += v * s / 4.0;
+        second += v / 20.0 * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
+    }
+};
+
+Moments momentsOf(const SurfaceMesh& mesh, const Vec3& origin) {
+    Moments m;
+    for (const Tri& t : mesh.triangles)
+        m.addTriangle(mesh.vertices[static_cast<std::size_t>(t[0])] - origin, mesh.vertices[static_cast<std::size_t>(t[1])] - origin,
+                      mesh.vertices[static_cast<std::size_t>(t[2])] - origin);
+    return m;
+}
+
+/// Volume centroid of the part of a closed mesh where (x - planePoint) . axis >= 0: triangles are
+/// clipped and tets taken from a point on the plane, so the cut face adds nothing.
+Vec3 clippedCentroid(const SurfaceMesh& mesh, const Vec3& planePoint, const Vec3& axis, double orientation) {
+    Moments m;
+    for (const Tri& t : mesh.triangles) {
+        std::array<Vec3, 3> p;
+        for (int i = 0; i < 3; ++i) p[static_cast<std::size_t>(i)] = mesh.vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])] - planePoint;
+        std::vector<Vec3> poly;
+        for (int i = 0; i < 3; ++i) {
+            const Vec3& a = p[static_cast<std::size_t>(i)];
+            const Vec3& b = p[static_cast<std::size_t>((i + 1) % 3)];
+            const double da = a.dot(axis), db = b.dot(axis);
+            if (da >= 0) poly.push_back(a);
+            if ((da >= 0) != (db >= 0)) poly.push_back(a + (b - a) * (da / (da - db)));
+        }
+        for (std::size_t k = 1; k + 1 < poly.size(); ++k) m.addTriangle(poly[0], poly[k], poly[k + 1]);
+    }
+    m.volume *= orientation;
+    m.first *= orientation;
+    return m.volume > 0 ? Vec3(planePoint + m.first / m.volume) : planePoint;
+}
+
+struct Shape {
+    Vec3 centroid;
+    Vec3 longAxis;       ///< unit, sense not yet decided
+    double crownVote = 0;  ///< > 0: the crown lies along +longAxis (bulk or bone)
+    double orientation = 1;  ///< -1 when the mesh is oriented inward
+    BBox box;
+};
+
+Shape shapeOf(int unn, const SurfaceMesh& mesh) {
+    if (mesh.triangles.empty()) throw Error("tooth " + std::to_string(unn) + ": empty surface, no axes");
+    Shape s;
+    s.box = boundingBox(mesh);
+    const Vec3 origin = 0.5 * (s.box.min + s.box.max);
+    Moments m = momentsOf(mesh, origin);
+    if (m.volume < 0) {
+        s.orientation = -1;
+        m.volume = -m.volume, m.first = -m.first, m.second = -m.second;
+    }
+    if (!(m.volume > 1e-9)) throw Error("tooth " + std::to_string(unn) + ": surface encloses no volume, no axes");
+    const Vec3 mean = m.first / m.volume;
+    s.centroid = origin + mean;
+    const Eigen::Matrix3d covariance = m.second / m.volume - mean * mean.transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance);
+    s.longAxis = eig.eigenvectors().col(2).normalized();
+    // The crown is the bulky end: the volume centroid lies on its side of the mid-length.
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Tri& t : mesh.triangles)
+        for (std::int32_t v : t) {
+            const double h = (mesh.vertices[static_cast<std::size_t>(v)] - s.centroid).dot(s.longAxis);
+            lo = std::min(lo, h), hi = std::max(hi, h);
+        }
+    s.crownVote = -(lo + hi) / 2.0;  // centroid (0) minus the mid-length
+    return s;
+}
+
+}  // namespace
+
+double angleDeg(const Vec3& a, const Vec3& b) {
+    const double c = a.normalized().dot(b.normalized());
+    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& teeth, Jaw jaw, const SurfaceMesh& bone,
+                                            const AxesFromShapeOptions& o, std::vector<std::string>* notes) {
+    std::map<int, Shape> shapes;
+    for (const auto& [unn, mesh] : teeth) shapes[unn] = shapeOf(unn, mesh);
+    if (shapes.empty()) return {};
+
+    // One occlusal sense for the jaw: first a common line (long axes made to agree), then a vote.
+    const Vec3 reference = shapes.begin()->second.longAxis;
+    Vec3 common = Vec3::Zero();
+    for (auto& [unn, s] : shapes) {
+        if (s.longAxis.dot(reference) < 0) s.longAxis = -s.longAxis, s.crownVote = -s.crownVote;
+        common += s.longAxis;
+    }
+    common.normalize();
+    double vote = 0;
+    bool fromBone = false;
+    if (!bone.vertices.empty()) {
+        // The bone around a tooth surrounds its root: the tooth centroid lies crown-side of it.
+        for (const auto& [unn, s] : shapes) {
+            BBox near = s.box;
+            near.min.array() -= 1.0;
+            near.max.array() += 1.0;
+            Vec3 sum = Vec3::Zero();
+            std::size_t count = 0;
+            for (const Vec3& v : bone.vertices)
+                if ((v.array() >= near.min.array()).all() && (v.array() <= near.max.array()).all()) sum += v, ++count;
+            if (count > 0) vote += (s.centroid - sum / static_cast<double>(count)).dot(common);
+        }
+        fromBone = vote != 0;
+    }
+    if (!fromBone)
+        for (const auto& [unn, s] : shapes) vote += s.crownVote;
+    if (vote == 0) {
+        vote = (jaw == Jaw::Mandible ? 1.0 : -1.0) * common.z();
+        if (notes) notes->push_back("tooth axes: occlusal side from the +z convention");
+    }
+    const double sense = vote >= 0 ? 1.0 : -1.0;
+
+    Vec3 archCentre = Vec3::Zero();
+    for (const auto& [unn, s] : shapes) archCentre += s.centroid;
+    archCentre /= static_cast<double>(shapes.size());
+    const double midline = jaw == Jaw::Maxilla ? 8.5 : 24.5;
+
+    std::map<int, ToothAxes> axes;
+    for (auto it = shapes.begin(); it != shapes.end(); ++it) {
+        const int unn = it->first;
+        const Shape& s = it->second;
+        ToothAxes a;
+        a.occlusal = sense * s.longAxis;
+        // Arch tangent from the neighbours in UNN order (UNN runs along the arch in both jaws).
+        const Vec3 prev = it == shapes.begin() ? s.centroid : std::prev(it)->second.centroid;
+        const Vec3 next = std::next(it) == shapes.end() ? s.centroid : std::next(it)->second.centroid;
+        Vec3 tangent = next - prev;
+        tangent -= tangent.dot(a.occlusal) * a.occlusal;
+        if (tangent.norm() < 1e-9) {
+            // A lone tooth: the cross-section's wider principal direction stands in for the arch.
+            Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+            for (const Vec3& v : teeth.at(unn).vertices) cov += (v - s.centroid) * (v - s.centroid).transpose();
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+            tangent = eig.eigenvectors().col(1);
+            tangent -= tangent.dot(a.occlusal) * a.occlusal;
+            if (notes) notes->push_back("tooth " + std::to_string(unn) + ": no neighbours, mesial-distal and labial senses guessed");
+        }
+        tangent.normalize();
+        a.mesialDistal = unn < midline ? Vec3(-tangent) : tangent;  // distal = away from the midline
+        a.labial = a.occlusal.cross(a.mesialDistal).normalized();
+        if (a.labial.dot(s.centroid - archCentre) < 0) a.labial = -a.labial;
+        // Crown: the occlusal part of the tooth; its volume centroid is the crown centre.
+        double top = -std::numeric_limits<double>::infinity(), bottom = -top;
+        for (const Vec3& v : teeth.at(unn).vertices) {
+            const double h = (v - s.centroid).dot(a.occlusal);
+            top = std::max(top, h), bottom = std::min(bottom, h);
+        }
+        const Vec3 cut = s.centroid + (top - o.crownFraction * (top - bottom)) * a.occlusal;
+        a.crownCentre = clippedCentroid(teeth.at(unn), cut, a.occlusal, s.orientation);
+        axes[unn] = a;
+    }
+    if (notes && fromBone) notes->push_back("tooth axes: occlusal side from the bone around the roots");
+    return axes;
+}
+
+}  // namespace jawmesh
