@@ -82,6 +82,9 @@ nlohmann::json runOptionsToJson(const RunOptions& o) {
         {"pdl_ratio", o.carve.pdlRatio},
         {"clearance_voxels", o.carve.clearanceVoxels},
         {"gap_bridge_mm", o.carve.gapBridgeMm},
+        {"surface_tooth_error_mm", o.simplify.toothErrorMm},
+        {"surface_bone_error_mm", o.simplify.boneErrorMm},
+        {"surface_min_angle_deg", o.simplify.minAngleDeg},
         {"tet_radius_edge", o.tet.radiusEdgeRatio},
         {"tet_min_dihedral_deg", o.tet.minDihedralDeg},
         {"tet_pdl_edge_mm", o.tet.pdlEdgeMm},
@@ -116,6 +119,9 @@ void applyRunConfig(const std::string& path, RunOptions& o) {
         readKey(j, "pdl_ratio", o.carve.pdlRatio);
         readKey(j, "clearance_voxels", o.carve.clearanceVoxels);
         readKey(j, "gap_bridge_mm", o.carve.gapBridgeMm);
+        readKey(j, "surface_tooth_error_mm", o.simplify.toothErrorMm);
+        readKey(j, "surface_bone_error_mm", o.simplify.boneErrorMm);
+        readKey(j, "surface_min_angle_deg", o.simplify.minAngleDeg);
         readKey(j, "tet_radius_edge", o.tet.radiusEdgeRatio);
         readKey(j, "tet_min_dihedral_deg", o.tet.minDihedralDeg);
         readKey(j, "tet_pdl_edge_mm", o.tet.pdlEdgeMm);
@@ -179,8 +185,11 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     InterfaceComplex complex =
         log.run(jaw + ": interface surface", progress, [&] { return extractInterfaces(field, options.extract, progress); });
     field = LabelField{};  // the grids are no longer needed; free them before TetGen
+    SimplifyStats simplifyStats;
+    complex = log.run(jaw + ": simplify surface", progress,
+                      [&] { return simplifyInterfaces(complex, options.simplify, progress, &simplifyStats); });
     record["surface"] = {{"vertices", complex.surface.vertices.size()}, {"triangles", complex.surface.triangles.size()},
-                         {"seeds", complex.seeds.size()}};
+                         {"seeds", complex.seeds.size()}, {"simplify", toJson(simplifyStats)}};
 
     TetStats tetStats;
     TetMesh mesh = log.run(jaw + ": tetrahedralize", progress,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "filters/ExtractInterfaces.h"
+#include "filters/SimplifyInterfaces.h"
 #include "io/Case.h"
 #include "io/Progress.h"
 #include "levelset/CarveGaps.h"
@@ -21,6 +22,7 @@ struct RunOptions {
     LoadOptions load;
     CarveOptions carve;
     ExtractOptions extract;
+    SimplifyOptions simplify;
     TetOptions tet;
     bool writeLevelSets = false;   ///< also write <out>/<jaw>/levelsets/*.vdb
     std::string fromVdb;           ///< resume from a carved label field folder instead of surfaces

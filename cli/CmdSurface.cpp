@@ -1,0 +1,95 @@
+// jawmesh surface: carved label field -> simplified interface complex for TetGen (.poly with facet
+// markers = label pairs and one seed per region component), one .ply per region, summary JSON.
+#include "cli/Commands.h"
+#include "filters/ExtractInterfaces.h"
+#include "filters/SimplifyInterfaces.h"
+#include "io/AtomicFile.h"
+#include "io/Error.h"
+#include "io/PolyWriter.h"
+#include "io/ResourceUsage.h"
+#include "levelset/LabelFieldIO.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace jawmesh {
+namespace {
+
+struct SurfaceCliOptions {
+    std::string carveDir;
+    std::string output;
+    SimplifyOptions simplify;
+    bool simplifyOn = true;
+    bool json = false;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
+    const auto start = std::chrono::steady_clock::now();
+    Progress& progress = terminalProgress(global);
+    // Accept the jaw folder of `jawmesh carve` / `run --write-levelsets` or its levelsets/ folder.
+    std::string dir = opt.carveDir;
+    if (std::filesystem::exists(dir + "/levelsets/labels.vdb")) dir += "/levelsets";
+    const LabelField field = readLabelField(dir);
+    const double secondsRead = secondsSince(start);
+
+    const auto tExtract = std::chrono::steady_clock::now();
+    InterfaceComplex complex = extractInterfaces(field, ExtractOptions{}, progress);
+    const double secondsExtract = secondsSince(tExtract);
+    SimplifyStats stats;
+    if (opt.simplifyOn) complex = simplifyInterfaces(complex, opt.simplify, progress, &stats);
+
+    const std::string jaw = jawName(field.jaw);
+    writeTetgenPoly(complex, opt.output + "/" + jaw + ".poly");
+    writeRegionBoundaries(complex, opt.output + "/regions", "ply");
+    nlohmann::json j = {{"input", opt.carveDir},
+                        {"jaw", jaw},
+                        {"voxel_mm", field.voxelSizeMm},
+                        {"triangles", complex.surface.triangles.size()},
+                        {"vertices", complex.surface.vertices.size()},
+                        {"seeds", complex.seeds.size()},
+                        {"seconds", {{"read", secondsRead}, {"extract", secondsExtract}, {"simplify", stats.seconds},
+                                     {"total", secondsSince(start)}}},
+                        {"peak_memory_bytes", peakResidentMemoryBytes()}};
+    if (opt.simplifyOn) {
+        j["simplify"] = toJson(stats);
+        j["simplify"]["options"] = {{"tooth_error_mm", opt.simplify.toothErrorMm},
+                                    {"bone_error_mm", opt.simplify.boneErrorMm},
+                                    {"min_angle_deg", opt.simplify.minAngleDeg}};
+    }
+    writeFileAtomically(opt.output + "/surface.json", [&](std::ostream& os) { os << j.dump(2) << "\n"; }, false);
+    if (opt.json) std::cout << j.dump() << std::endl;
+}
+
+void addSurfaceCommand(CLI::App& app, GlobalOptions& global) {
+    auto opt = std::make_shared<SurfaceCliOptions>();
+    auto* cmd = app.add_subcommand(
+        "surface",
+        "Carved label field -> conformal interface surface, simplified with an error bound. Writes "
+        "<out>/<jaw>.poly (TetGen: facet marker = label pair, one region seed per component), "
+        "<out>/regions/<label>.ply and <out>/surface.json (triangles per interface, error, angles, seconds).");
+    cmd->add_option("carve-dir", opt->carveDir, "Jaw folder written by `jawmesh carve` (or its levelsets/ folder)")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    cmd->add_option("-o,--output", opt->output, "Output folder")->required();
+    cmd->add_option("--tooth-error", opt->simplify.toothErrorMm, "Error bound on tooth and PDL interfaces, mm (default 0.02)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--bone-error", opt->simplify.boneErrorMm, "Error bound on the bone surface, mm (default 0.08)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--min-angle", opt->simplify.minAngleDeg, "Smallest angle a collapse may create, degrees (default 20)")
+        ->check(CLI::Range(0.0, 59.0));
+    cmd->add_flag("!--no-simplify", opt->simplifyOn, "Write the raw extraction");
+    cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");
+    cmd->callback([opt, &global] { runSurface(*opt, global); });
+}
+
+}  // namespace
+JAWMESH_COMMAND(40, addSurfaceCommand);
+}  // namespace jawmesh

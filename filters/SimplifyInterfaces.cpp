@@ -1,0 +1,713 @@
+#include "filters/SimplifyInterfaces.h"
+
+#include "filters/SelfIntersections.h"
+#include "filters/TriangleGeometry.h"
+#include "io/Error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <queue>
+#include <unordered_map>
+
+namespace jawmesh {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Symmetric 4x4 plane quadric (Garland-Heckbert): sum of w * (n.p + d)^2.
+struct Quadric {
+    double q[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    void addPlane(const Vec3& n, double d, double w) {
+        const double a = n.x(), b = n.y(), c = n.z();
+        const double v[10] = {a * a, a * b, a * c, a * d, b * b, b * c, b * d, c * c, c * d, d * d};
+        for (int i = 0; i < 10; ++i) q[i] += w * v[i];
+    }
+    void add(const Quadric& o) {
+        for (int i = 0; i < 10; ++i) q[i] += o.q[i];
+    }
+    double eval(const Vec3& p) const {
+        const double x = p.x(), y = p.y(), z = p.z();
+        return q[0] * x * x + 2 * q[1] * x * y + 2 * q[2] * x * z + 2 * q[3] * x + q[4] * y * y + 2 * q[5] * y * z +
+               2 * q[6] * y + q[7] * z * z + 2 * q[8] * z + q[9];
+    }
+};
+
+struct PairRule {
+    double errorMm;
+    double maxEdgeMm;
+};
+
+/// Uniform grid of triangle boxes: a triangle is listed in every cell its box meets (cells of a
+/// few fine triangles, so queries stay local). Entries carry the triangle's version; moving or
+/// deleting a triangle bumps it, so stale entries are skipped without searching the cells.
+class BoxGrid {
+public:
+    explicit BoxGrid(double cellMm) : cell_(cellMm) {}
+
+    void place(std::int32_t t, const BBox& box) {
+        if (std::size_t(t) >= version_.size()) {
+            version_.resize(std::size_t(t) + 1, 0);
+            seen_.resize(std::size_t(t) + 1, 0);
+        }
+        const std::uint32_t ver = ++version_[std::size_t(t)];
+        forCells(box, [&](std::uint64_t key) { cells_[key].push_back({t, ver}); });
+    }
+
+    void remove(std::int32_t t) { ++version_[std::size_t(t)]; }
+
+    /// Calls f(t) once for every live triangle listed in a cell that `box` meets.
+    template <typename F>
+    void query(const BBox& box, F&& f) {
+        ++queryId_;
+        forCells(box, [&](std::uint64_t key) {
+            const auto it = cells_.find(key);
+            if (it == cells_.end()) return;
+            auto& entries = it->second;
+            std::size_t keep = 0;
+            for (std::size_t i = 0; i < entries.size(); ++i) {
+                const Entry e = entries[i];
+                if (version_[std::size_t(e.t)] != e.version) continue;  // stale: drop it
+                entries[keep++] = e;
+                if (seen_[std::size_t(e.t)] == queryId_) continue;
+                seen_[std::size_t(e.t)] = queryId_;
+                f(e.t);
+            }
+            entries.resize(keep);
+        });
+    }
+
+private:
+    struct Entry {
+        std::int32_t t;
+        std::uint32_t version;
+    };
+    template <typename F>
+    void forCells(const BBox& box, F&& f) const {
+        const auto c = [&](double x) { return int(std::floor(x / cell_)); };
+        const int x0 = c(box.min.x()), x1 = c(box.max.x()), y0 = c(box.min.y()), y1 = c(box.max.y());
+        const int z0 = c(box.min.z()), z1 = c(box.max.z());
+        for (int x = x0; x <= x1; ++x)
+            for (int y = y0; y <= y1; ++y)
+                for (int z = z0; z <= z1; ++z) f(keyOf(x, y, z));
+    }
+    static std::uint64_t keyOf(int x, int y, int z) {
+        const auto m = [](int v) { return std::uint64_t(std::uint32_t(v + (1 << 20)) & 0x1FFFFF); };
+        return (m(x) << 42) | (m(y) << 21) | m(z);
+    }
+    double cell_;
+    std::unordered_map<std::uint64_t, std::vector<Entry>> cells_;
+    std::vector<std::uint32_t> version_;
+    std::vector<std::uint32_t> seen_;
+    std::uint32_t queryId_ = 0;
+};
+
+/// Floating-point filter before the exact test: true when every corner of b not shared with a
+/// lies clearly on one side of a's plane (margin far above rounding), so they cannot intersect
+/// other than at what they share.
+bool separatedByPlane(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const Tri& ib) {
+    // Two triangles on one edge meet only when folded onto each other: apexes clearly on opposite
+    // sides of the edge (seen across it) rules that out, coplanar or not.
+    int sa[3], sb[3], shared = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (ia[i] == ib[j]) {
+                sa[shared] = i;
+                sb[shared] = j;
+                ++shared;
+            }
+    if (shared == 2) {
+        const Vec3& s = a[sa[0]];
+        const Vec3 e = (a[sa[1]] - s).normalized();
+        Vec3 da = a[3 - sa[0] - sa[1]] - s, db = b[3 - sb[0] - sb[1]] - s;
+        da -= e * e.dot(da);
+        db -= e * e.dot(db);
+        return da.dot(db) < -1e-9 * da.norm() * db.norm();
+    }
+    const Vec3 n = (a[1] - a[0]).cross(a[2] - a[0]);
+    const double scale = (a[1] - a[0]).squaredNorm() + (a[2] - a[0]).squaredNorm() + (b[0] - a[0]).squaredNorm() +
+                         (b[1] - a[0]).squaredNorm() + (b[2] - a[0]).squaredNorm();
+    const double margin = 1e-12 * scale * std::sqrt(scale);
+    int above = 0, below = 0, free = 0;
+    for (int k = 0; k < 3; ++k) {
+        if (ib[k] == ia[0] || ib[k] == ia[1] || ib[k] == ia[2]) continue;
+        ++free;
+        const double d = n.dot(b[k] - a[0]);
+        if (d > margin) ++above;
+        else if (d < -margin) ++below;
+    }
+    return free > 0 && (above == free || below == free);
+}
+
+inline std::uint64_t edgeKey(std::int32_t a, std::int32_t b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+
+class Simplifier {
+public:
+    Simplifier(const InterfaceComplex& in, const SimplifyOptions& o)
+        : opt_(o), pos_(in.surface.vertices), tri_(in.surface.triangles), sides_(in.sides),
+          grid_(6.0 * finestEdge(in.surface)) {
+        const std::size_t nv = pos_.size(), nt = tri_.size();
+        pair_.resize(nt);
+        alive_.assign(nt, 1);
+        vtris_.resize(nv);
+        pts_.resize(nt);
+        q_.resize(nv);
+        stamp_.assign(nv, 0);
+        dead_.assign(nv, 0);
+        err_.assign(nv, 0.0f);
+        cosTurn_ = std::cos(o.maxNormalTurnDeg * kPi / 180.0);
+        cosMinAngle_ = std::cos(o.minAngleDeg * kPi / 180.0);
+        for (std::size_t t = 0; t < nt; ++t) {
+            const Tri& f = tri_[t];
+            for (int k = 0; k < 3; ++k) {
+                if (f[k] < 0 || std::size_t(f[k]) >= nv) throw Error("simplification: triangle index out of range");
+                vtris_[std::size_t(f[k])].push_back(std::int32_t(t));
+            }
+            pair_[t] = interfaceMarker(sides_[t][0], sides_[t][1]);
+            rules_.try_emplace(pair_[t], ruleFor(sides_[t][0], sides_[t][1]));
+            const Vec3 n2 = (pos_[f[1]] - pos_[f[0]]).cross(pos_[f[2]] - pos_[f[0]]);
+            const double len = n2.norm();
+            if (len > 0) {
+                const Vec3 n = n2 / len;
+                for (int k = 0; k < 3; ++k) q_[std::size_t(f[k])].addPlane(n, -n.dot(pos_[f[0]]), 0.5 * len);
+            }
+            grid_.place(std::int32_t(t), boxOf(pos_[f[0]], pos_[f[1]], pos_[f[2]]));
+        }
+    }
+
+    void run(Progress& progress) {
+        ProgressStage stage(progress, "simplify interfaces");
+        const std::size_t nv = pos_.size();
+        for (std::size_t u = 0; u < nv; ++u) {
+            if (u % 65536 == 0) {
+                progress.checkCancelled();
+                stage.update(0.2 * double(u) / double(nv));
+            }
+            schedule(std::int32_t(u));
+        }
+        std::size_t popped = 0;
+        const double expected = double(heap_.size());
+        while (!heap_.empty()) {
+            const Candidate c = heap_.top();
+            heap_.pop();
+            if (++popped % 65536 == 0) {
+                progress.checkCancelled();
+                stage.update(0.2 + 0.8 * std::min(1.0, double(popped) / (1.5 * expected + 1)));
+            }
+            if (dead_[std::size_t(c.u)] || stamp_[std::size_t(c.u)] != c.stamp) continue;
+            if (!evaluate(c.u, c.v, &plan_)) {
+                schedule(c.u, true);
+                continue;
+            }
+            apply(c.u, c.v, plan_);
+            ++collapses_;
+            // Everything whose neighbourhood changed gets a fresh candidate.
+            ring_.clear();
+            neighbours(c.v, ring_);
+            const std::vector<std::int32_t> ring = ring_;
+            schedule(c.v);
+            for (std::int32_t w : ring) schedule(w);
+        }
+    }
+
+    InterfaceComplex result(const InterfaceComplex& in, SimplifyStats& stats) const {
+        InterfaceComplex out;
+        std::vector<std::int32_t> remap(pos_.size(), -1);
+        for (std::size_t t = 0; t < tri_.size(); ++t) {
+            if (!alive_[t]) continue;
+            Tri f = tri_[t];
+            for (auto& v : f) {
+                if (remap[std::size_t(v)] < 0) {
+                    remap[std::size_t(v)] = std::int32_t(out.surface.vertices.size());
+                    out.surface.vertices.push_back(pos_[std::size_t(v)]);
+                }
+                v = remap[std::size_t(v)];
+            }
+            out.surface.triangles.push_back(f);
+            out.sides.push_back(sides_[t]);
+        }
+        out.seeds = in.seeds;
+        stats.inputTriangles = in.surface.triangles.size();
+        stats.outputTriangles = out.surface.triangles.size();
+        stats.outputVertices = out.surface.vertices.size();
+        stats.collapses = collapses_;
+        stats.maxErrorMm = err_.empty() ? 0.0 : double(*std::max_element(err_.begin(), err_.end()));
+        stats.minAngleDeg = 180;
+        const double edges[] = {5, 10, 15, 20, 30, 40};
+        for (std::size_t t = 0; t < out.surface.triangles.size(); ++t) {
+            const Tri& f = out.surface.triangles[t];
+            const double a = minAngleDeg(out.surface.vertices[f[0]], out.surface.vertices[f[1]], out.surface.vertices[f[2]]);
+            stats.minAngleDeg = std::min(stats.minAngleDeg, a);
+            stats.minAngleHistogram[std::size_t(std::upper_bound(std::begin(edges), std::end(edges), a) - std::begin(edges))]++;
+            stats.trianglesPerKind[interfaceKind(out.sides[t][0], out.sides[t][1])]++;
+        }
+        return out;
+    }
+
+private:
+    struct Candidate {
+        double cost;
+        std::int32_t u, v;
+        std::uint32_t stamp;
+        bool operator<(const Candidate& o) const {  // priority_queue pops the largest: invert
+            if (cost != o.cost) return cost > o.cost;
+            if (u != o.u) return u > o.u;
+            return v > o.v;
+        }
+    };
+
+    /// One edge u-w seen from u: its triangles (up to a few).
+    struct Spoke {
+        std::int32_t w;
+        std::int32_t tris[4];
+        int n = 0;
+        bool feature = false;
+    };
+
+    /// What evaluate() decided, used by apply() right after.
+    struct Plan {
+        std::vector<std::int32_t> removed, moved;   // triangles on u-v / the rest of u's fan
+        std::int32_t curveOther = -1;               // u's other curve neighbour (curve vertex)
+        std::vector<std::pair<std::int32_t, std::int32_t>> assign;  // input vertex -> triangle
+        std::vector<float> dist;                    // its distance
+        std::vector<std::int32_t> curvePoints;      // points of the merged curve edge v-w
+    };
+
+    static double finestEdge(const SurfaceMesh& m) {
+        double e = std::numeric_limits<double>::infinity();
+        for (std::size_t t = 0; t < std::min<std::size_t>(m.triangles.size(), 1000); ++t) {
+            const Tri& f = m.triangles[t];
+            e = std::min(e, (m.vertices[f[0]] - m.vertices[f[1]]).norm());
+        }
+        return std::isfinite(e) && e > 0 ? std::max(e, 1e-3) : 0.05;
+    }
+
+    static BBox boxOf(const Vec3& a, const Vec3& b, const Vec3& c) {
+        BBox box;
+        box.extend(a);
+        box.extend(b);
+        box.extend(c);
+        return box;
+    }
+
+    PairRule ruleFor(Label a, Label b) const {
+        const LabelKind ka = a == kOutsideLabel ? LabelKind::Outside : labelKind(a);
+        const LabelKind kb = b == kOutsideLabel ? LabelKind::Outside : labelKind(b);
+        const auto has = [&](LabelKind k) { return ka == k || kb == k; };
+        if (has(LabelKind::Pdl) && has(LabelKind::Outside)) return {opt_.toothErrorMm, opt_.capMaxEdgeMm};
+        if (has(LabelKind::Pdl)) return {opt_.toothErrorMm, opt_.pdlMaxEdgeMm};
+        if (has(LabelKind::Tooth)) return {opt_.toothErrorMm, opt_.toothMaxEdgeMm};
+        return {opt_.boneErrorMm, opt_.boneMaxEdgeMm};
+    }
+
+    const PairRule& rule(std::int32_t t) const { return rules_.at(pair_[std::size_t(t)]); }
+
+    std::int32_t third(std::int32_t t, std::int32_t a, std::int32_t b) const {
+        for (std::int32_t x : tri_[std::size_t(t)])
+            if (x != a && x != b) return x;
+        return -1;
+    }
+
+    void neighbours(std::int32_t u, std::vector<std::int32_t>& out) const {
+        for (std::int32_t t : vtris_[std::size_t(u)])
+            for (std::int32_t x : tri_[std::size_t(t)])
+                if (x != u) out.push_back(x);
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+    }
+
+    /// The spokes of u, sorted by neighbour id; false when an edge has more than 4 triangles.
+    bool spokes(std::int32_t u, std::vector<Spoke>& out) const {
+        out.clear();
+        for (std::int32_t t : vtris_[std::size_t(u)])
+            for (std::int32_t x : tri_[std::size_t(t)]) {
+                if (x == u) continue;
+                auto it = std::find_if(out.begin(), out.end(), [&](const Spoke& s) { return s.w == x; });
+                if (it == out.end()) {
+                    out.push_back(Spoke{x, {}, 0, false});
+                    it = out.end() - 1;
+                }
+                if (it->n == 4) return false;
+                it->tris[it->n++] = t;
+            }
+        for (Spoke& s : out) {
+            s.feature = s.n != 2;
+            for (int k = 1; k < s.n; ++k)
+                if (pair_[std::size_t(s.tris[k])] != pair_[std::size_t(s.tris[0])]) s.feature = true;
+        }
+        std::sort(out.begin(), out.end(), [](const Spoke& a, const Spoke& b) { return a.w < b.w; });
+        return true;
+    }
+
+    /// For a vertex without feature edges: true when its triangles form one fan (a disc).
+    bool singleFan(std::int32_t u, const std::vector<Spoke>& sp) const {
+        const auto& T = vtris_[std::size_t(u)];
+        if (T.size() != sp.size() || T.size() < 3) return false;
+        std::int32_t t = T[0];
+        std::int32_t w = third(t, u, tri_[std::size_t(t)][0] == u ? tri_[std::size_t(t)][1] : tri_[std::size_t(t)][0]);
+        std::size_t steps = 0;
+        do {
+            const auto it = std::lower_bound(sp.begin(), sp.end(), w, [](const Spoke& s, std::int32_t x) { return s.w < x; });
+            if (it == sp.end() || it->w != w || it->n != 2) return false;
+            const std::int32_t next = it->tris[0] == t ? it->tris[1] : it->tris[0];
+            w = third(next, u, w);
+            t = next;
+            ++steps;
+        } while (t != T[0] && steps <= T.size());
+        return steps == T.size();
+    }
+
+    /// Checks every condition of the file comment for u -> v; fills plan when given.
+    /// The two expensive tests (the removed points' error and intersections) run only when a plan
+    /// is asked for (the collapse is about to be made); schedule() ranks candidates without them.
+    bool evaluate(std::int32_t u, std::int32_t v, Plan* plan) {
+        if (dead_[std::size_t(u)] || dead_[std::size_t(v)]) return false;
+        std::vector<Spoke>& sp = spokeBuf_;
+        if (!spokes(u, sp)) return false;
+        int nFeature = 0;
+        const Spoke* uv = nullptr;
+        const Spoke* other = nullptr;
+        for (const Spoke& s : sp) {
+            if (s.w == v) uv = &s;
+            if (s.feature) ++nFeature;
+        }
+        if (!uv) return false;
+        if (nFeature == 0) {
+            if (!singleFan(u, sp)) return false;
+        } else if (nFeature == 2) {
+            if (!uv->feature) return false;
+            for (const Spoke& s : sp)
+                if (s.feature && s.w != v) other = &s;
+        } else {
+            return false;  // corner of the curve network
+        }
+
+        // Link condition: the common neighbours of u and v are exactly the apexes of u-v's triangles.
+        std::int32_t apex[4];
+        for (int k = 0; k < uv->n; ++k) apex[k] = third(uv->tris[k], u, v);
+        for (int i = 0; i < uv->n; ++i)
+            for (int j = i + 1; j < uv->n; ++j)
+                if (apex[i] == apex[j]) return false;
+        nbV_.clear();
+        neighbours(v, nbV_);
+        int common = 0;
+        for (const Spoke& s : sp)
+            if (std::binary_search(nbV_.begin(), nbV_.end(), s.w)) ++common;
+        if (common != uv->n) return false;
+        const auto isApex = [&](std::int32_t x) { return std::find(apex, apex + uv->n, x) != apex + uv->n; };
+
+        // The moved triangles and their new shapes.
+        moved_.clear();
+        for (std::int32_t t : vtris_[std::size_t(u)])
+            if (std::find(uv->tris, uv->tris + uv->n, t) == uv->tris + uv->n) moved_.push_back(t);
+        const Vec3& pv = pos_[std::size_t(v)];
+        newCorners_.resize(moved_.size());
+        newTris_.resize(moved_.size());
+        for (std::size_t m = 0; m < moved_.size(); ++m) {
+            const std::int32_t t = moved_[m];
+            Tri f = tri_[std::size_t(t)];
+            std::array<Vec3, 3> oldP, newP;
+            for (int k = 0; k < 3; ++k) oldP[k] = pos_[std::size_t(f[k])];
+            for (int k = 0; k < 3; ++k)
+                if (f[k] == u) f[k] = v;
+            for (int k = 0; k < 3; ++k) newP[k] = pos_[std::size_t(f[k])];
+            newTris_[m] = f;
+            newCorners_[m] = newP;
+            // Edge link: (v, a, b) must not exist already.
+            std::int32_t a = -1, b = -1;
+            for (std::int32_t x : f)
+                if (x != v) (a < 0 ? a : b) = x;
+            if (isApex(a) && isApex(b))
+                for (std::int32_t s : vtris_[std::size_t(v)]) {
+                    const Tri& g = tri_[std::size_t(s)];
+                    if (std::find(g.begin(), g.end(), a) != g.end() && std::find(g.begin(), g.end(), b) != g.end())
+                        return false;
+                }
+            const Vec3 n0 = (oldP[1] - oldP[0]).cross(oldP[2] - oldP[0]);
+            const Vec3 n1 = (newP[1] - newP[0]).cross(newP[2] - newP[0]);
+            const double l0 = n0.norm(), l1 = n1.norm();
+            if (l1 <= 1e-12 * (newP[1] - newP[0]).squaredNorm() || l1 == 0) return false;
+            if (l0 > 0 && n0.dot(n1) < cosTurn_ * l0 * l1) return false;
+            const double oldCos = smallestAngleCosine(oldP[0], oldP[1], oldP[2]);
+            const double newCos = smallestAngleCosine(newP[0], newP[1], newP[2]);
+            if (newCos > std::max(cosMinAngle_, oldCos)) return false;
+            const double maxEdge = rule(t).maxEdgeMm;
+            for (std::int32_t x : {a, b})
+                if (!isApex(x) && (pos_[std::size_t(x)] - pv).norm() > maxEdge) return false;
+        }
+
+        // Curve error: u and the points of u's two curve edges stay near the merged edge v-w.
+        if (other) {
+            double bound = std::numeric_limits<double>::infinity();
+            for (std::int32_t t : vtris_[std::size_t(u)]) bound = std::min(bound, rule(t).errorMm);
+            const Vec3& pw = pos_[std::size_t(other->w)];
+            const auto within = [&](std::int32_t p) {
+                return squaredDistanceToSegment(pos_[std::size_t(p)], pv, pw) <= bound * bound;
+            };
+            if (!within(u)) return false;
+            for (std::uint64_t key : {edgeKey(u, v), edgeKey(u, other->w)}) {
+                const auto it = curvePts_.find(key);
+                if (it != curvePts_.end())
+                    for (std::int32_t p : it->second)
+                        if (!within(p)) return false;
+            }
+        }
+
+        // Surface error: every point of u's triangles (and u itself) finds a triangle of its own
+        // interface around v, after the collapse, within the interface's bound.
+        if (plan) {
+            plan->assign.clear();
+            plan->dist.clear();
+        }
+        const auto place = [&](std::int32_t p, int pairKey, double bound) {
+            double best = bound * bound;
+            std::int32_t bestT = -1;
+            const Vec3& x = pos_[std::size_t(p)];
+            for (std::size_t m = 0; m < moved_.size(); ++m) {
+                if (pair_[std::size_t(moved_[m])] != pairKey) continue;
+                const double d = squaredDistanceToTriangle(x, newCorners_[m][0], newCorners_[m][1], newCorners_[m][2]);
+                if (d <= best) {
+                    best = d;
+                    bestT = moved_[m];
+                }
+            }
+            for (std::int32_t t : vtris_[std::size_t(v)]) {
+                if (pair_[std::size_t(t)] != pairKey || std::find(uv->tris, uv->tris + uv->n, t) != uv->tris + uv->n)
+                    continue;
+                const Tri& f = tri_[std::size_t(t)];
+                const double d = squaredDistanceToTriangle(x, pos_[f[0]], pos_[f[1]], pos_[f[2]]);
+                if (d < best || (d == best && bestT < 0)) {
+                    best = d;
+                    bestT = t;
+                }
+            }
+            if (bestT < 0) return false;
+            if (plan) {
+                plan->assign.emplace_back(p, bestT);
+                plan->dist.push_back(float(std::sqrt(best)));
+            }
+            return true;
+        };
+        pairsDone_.clear();
+        for (std::int32_t t : vtris_[std::size_t(u)]) {
+            const int key = pair_[std::size_t(t)];
+            const double bound = rule(t).errorMm;
+            if (plan)
+                for (std::int32_t p : pts_[std::size_t(t)])
+                    if (!place(p, key, bound)) return false;
+            if (std::find(pairsDone_.begin(), pairsDone_.end(), key) == pairsDone_.end()) {
+                pairsDone_.push_back(key);
+                if (!place(u, key, bound)) return false;
+            }
+        }
+
+        // Intersections: every new triangle against everything its box meets.
+        for (std::size_t m = 0; plan && m < moved_.size(); ++m) {
+            const Vec3* P = newCorners_[m].data();
+            const BBox box = boxOf(P[0], P[1], P[2]);
+            bool hit = false;
+            grid_.query(box, [&](std::int32_t s) {
+                if (hit || s == moved_[m] || !alive_[std::size_t(s)]) return;
+                if (std::find(uv->tris, uv->tris + uv->n, s) != uv->tris + uv->n) return;
+                const auto mi = std::find(moved_.begin(), moved_.end(), s);
+                Vec3 Q[3];
+                Tri g;
+                if (mi != moved_.end()) {
+                    const std::size_t k = std::size_t(mi - moved_.begin());
+                    if (k < m) return;  // pair already tested from the other side
+                    g = newTris_[k];
+                    for (int i = 0; i < 3; ++i) Q[i] = newCorners_[k][std::size_t(i)];
+                } else {
+                    g = tri_[std::size_t(s)];
+                    for (int i = 0; i < 3; ++i) Q[i] = pos_[std::size_t(g[std::size_t(i)])];
+                }
+                BBox qb = boxOf(Q[0], Q[1], Q[2]);
+                if ((qb.min.array() > box.max.array()).any() || (box.min.array() > qb.max.array()).any()) return;
+                if (separatedByPlane(P, newTris_[m], Q, g) || separatedByPlane(Q, g, P, newTris_[m])) return;
+                if (trianglesIntersect(P, newTris_[m], Q, g)) hit = true;
+            });
+            if (hit) return false;
+        }
+
+        if (plan) {
+            plan->removed.assign(uv->tris, uv->tris + uv->n);
+            plan->moved = moved_;
+            plan->curveOther = other ? other->w : -1;
+            plan->curvePoints.clear();
+            if (other) {
+                plan->curvePoints.push_back(u);
+                for (std::uint64_t key : {edgeKey(u, v), edgeKey(u, other->w), edgeKey(v, other->w)}) {
+                    const auto it = curvePts_.find(key);
+                    if (it != curvePts_.end())
+                        plan->curvePoints.insert(plan->curvePoints.end(), it->second.begin(), it->second.end());
+                }
+            }
+        }
+        return true;
+    }
+
+    /// Makes the collapse u -> v that evaluate(u, v, &plan) accepted just before.
+    void apply(std::int32_t u, std::int32_t v, const Plan& plan) {
+        for (std::int32_t t : plan.removed) {
+            alive_[std::size_t(t)] = 0;
+            grid_.remove(t);
+            for (std::int32_t x : tri_[std::size_t(t)]) {
+                auto& L = vtris_[std::size_t(x)];
+                L.erase(std::remove(L.begin(), L.end(), t), L.end());
+            }
+            pts_[std::size_t(t)].clear();
+            pts_[std::size_t(t)].shrink_to_fit();
+        }
+        for (std::int32_t t : plan.moved) {
+            for (auto& x : tri_[std::size_t(t)])
+                if (x == u) x = v;
+            vtris_[std::size_t(v)].push_back(t);
+            pts_[std::size_t(t)].clear();
+            const Tri& f = tri_[std::size_t(t)];
+            grid_.place(t, boxOf(pos_[f[0]], pos_[f[1]], pos_[f[2]]));
+        }
+        // Reassign the points of u's old triangles (v's untouched triangles keep theirs).
+        for (std::size_t i = 0; i < plan.assign.size(); ++i) {
+            const auto [p, t] = plan.assign[i];
+            auto& L = pts_[std::size_t(t)];
+            if (std::find(L.begin(), L.end(), p) == L.end()) L.push_back(p);
+            err_[std::size_t(p)] = plan.dist[i];
+        }
+        // u itself may be placed once per interface; its error is the largest of those.
+        float eu = 0;
+        for (std::size_t i = 0; i < plan.assign.size(); ++i)
+            if (plan.assign[i].first == u) eu = std::max(eu, plan.dist[i]);
+        err_[std::size_t(u)] = eu;
+        if (plan.curveOther >= 0) {
+            curvePts_.erase(edgeKey(u, v));
+            curvePts_.erase(edgeKey(u, plan.curveOther));
+            auto& L = curvePts_[edgeKey(v, plan.curveOther)];
+            L = plan.curvePoints;
+            std::sort(L.begin(), L.end());
+            L.erase(std::unique(L.begin(), L.end()), L.end());
+        }
+        q_[std::size_t(v)].add(q_[std::size_t(u)]);
+        vtris_[std::size_t(u)].clear();
+        vtris_[std::size_t(u)].shrink_to_fit();
+        dead_[std::size_t(u)] = 1;
+    }
+
+    /// Pushes u's cheapest collapse that passes the checks (all of them when `full`, else all but
+    /// the intersection test); none when no neighbour does.
+    void schedule(std::int32_t u, bool full = false) {
+        ++stamp_[std::size_t(u)];
+        if (dead_[std::size_t(u)] || vtris_[std::size_t(u)].empty()) return;
+        cand_.clear();
+        neighbours(u, cand_);
+        costs_.clear();
+        const Quadric& qu = q_[std::size_t(u)];
+        for (std::int32_t v : cand_) {
+            Quadric q = qu;
+            q.add(q_[std::size_t(v)]);
+            const double cost = std::max(0.0, q.eval(pos_[std::size_t(v)])) +
+                                1e-6 * (pos_[std::size_t(u)] - pos_[std::size_t(v)]).squaredNorm();
+            costs_.emplace_back(cost, v);
+        }
+        std::sort(costs_.begin(), costs_.end());
+        for (const auto& [cost, v] : costs_)
+            if (evaluate(u, v, full ? &scratchPlan_ : nullptr)) {
+                heap_.push(Candidate{cost, u, v, stamp_[std::size_t(u)]});
+                return;
+            }
+    }
+
+    const SimplifyOptions& opt_;
+    std::vector<Vec3> pos_;
+    std::vector<Tri> tri_;
+    std::vector<std::array<Label, 2>> sides_;
+    std::vector<int> pair_;
+    std::vector<char> alive_;
+    std::vector<std::vector<std::int32_t>> vtris_;
+    std::vector<std::vector<std::int32_t>> pts_;   ///< removed input vertices placed on each triangle
+    std::vector<Quadric> q_;
+    std::vector<std::uint32_t> stamp_;
+    std::vector<char> dead_;
+    std::vector<float> err_;                        ///< per input vertex: distance to its triangle
+    std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts_;
+    std::unordered_map<int, PairRule> rules_;
+    BoxGrid grid_;
+    double cosTurn_ = 0.5;
+    double cosMinAngle_ = 0.94;
+    std::size_t collapses_ = 0;
+    std::priority_queue<Candidate> heap_;
+    // scratch buffers
+    std::vector<Spoke> spokeBuf_;
+    std::vector<std::int32_t> nbV_, moved_, ring_, cand_;
+    std::vector<int> pairsDone_;
+    std::vector<std::array<Vec3, 3>> newCorners_;
+    std::vector<Tri> newTris_;
+    std::vector<std::pair<double, std::int32_t>> costs_;
+    Plan plan_, scratchPlan_;
+};
+
+}  // namespace
+
+nlohmann::json toJson(const SimplifyStats& s) {
+    return {{"input_triangles", s.inputTriangles},
+            {"output_triangles", s.outputTriangles},
+            {"output_vertices", s.outputVertices},
+            {"collapses", s.collapses},
+            {"triangles_per_kind", s.trianglesPerKind},
+            {"max_error_mm", s.maxErrorMm},
+            {"min_angle_deg", s.minAngleDeg},
+            {"min_angle_histogram",
+             {{"bins_deg", {0, 5, 10, 15, 20, 30, 40, 60}}, {"triangles", s.minAngleHistogram}}},
+            {"seconds", s.seconds}};
+}
+
+std::string interfaceKind(Label a, Label b) {
+    const auto kind = [](Label l) {
+        if (l == kOutsideLabel) return std::string("outside");
+        switch (labelKind(l)) {
+            case LabelKind::Bone: return std::string("bone");
+            case LabelKind::Tooth: return std::string("tooth");
+            case LabelKind::Pdl: return std::string("pdl");
+            default: return std::string("outside");
+        }
+    };
+    static const char* order[] = {"tooth", "pdl", "bone", "outside"};
+    std::string ka = kind(a), kb = kind(b);
+    const auto rank = [&](const std::string& k) { return std::find(std::begin(order), std::end(order), k) - std::begin(order); };
+    if (rank(ka) > rank(kb)) std::swap(ka, kb);
+    const std::string name = ka + "/" + kb;
+    for (const char* known : {"tooth/pdl", "pdl/bone", "tooth/outside", "pdl/outside", "bone/outside"})
+        if (name == known) return name;
+    return "other";
+}
+
+InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const SimplifyOptions& options,
+                                    Progress& progress, SimplifyStats* stats) {
+    const auto start = std::chrono::steady_clock::now();
+    if (input.sides.size() != input.surface.triangles.size())
+        throw Error("simplification: one label pair per triangle is required");
+    for (double x : {options.toothErrorMm, options.boneErrorMm, options.pdlMaxEdgeMm, options.capMaxEdgeMm,
+                     options.toothMaxEdgeMm, options.boneMaxEdgeMm})
+        if (!(x >= 0) || !std::isfinite(x)) throw Error("simplification: error bounds and edge lengths must be >= 0");
+    if (!(options.minAngleDeg >= 0 && options.minAngleDeg < 60))
+        throw Error("simplification: minimum angle must be in [0, 60) degrees");
+    if (!(options.maxNormalTurnDeg > 0 && options.maxNormalTurnDeg <= 180))
+        throw Error("simplification: maximum normal turn must be in (0, 180] degrees");
+
+    Simplifier s(input, options);
+    s.run(progress);
+    SimplifyStats local;
+    SimplifyStats& st = stats ? *stats : local;
+    st = SimplifyStats{};
+    InterfaceComplex out = s.result(input, st);
+    const SelfIntersectionReport check = findSelfIntersections(out.surface);
+    if (!check.pairs.empty())
+        throw Error("simplification: the output has " + std::to_string(check.pairs.size()) +
+                    " intersecting triangle pairs (the input surface must be intersection-free)");
+    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,78 @@
+// Interface complex -> far fewer triangles, same regions: feature- and topology-preserving edge
+// collapses with a guaranteed error bound and no self-intersections.
+//
+// Operation: half-edge collapses u -> v (u disappears, v keeps its position, so every output vertex
+// is an input vertex lying on the fine interface), cheapest first by the quadric error of u's planes
+// at v (Garland-Heckbert). A collapse is made only when all of these hold:
+//  - features: a vertex inside one interface moves anywhere in it; a vertex on a junction curve
+//    (where three or more regions meet, or two interfaces of different label pairs) moves only
+//    along that curve; corners of the curve network never move. So every triangle keeps its label
+//    pair and every junction curve stays a polyline through its input vertices.
+//  - topology: the link condition on the whole complex (Dey et al. 1999), so no region vanishes,
+//    splits or changes genus, and no two triangles come to share their three vertices.
+//  - error: every input vertex removed so far stays within the bound of its interface (label
+//    pair) of the output triangles of that interface, and every removed curve vertex within the
+//    bound of its curve (tracked exactly; the reported maximum is this one-sided Hausdorff
+//    distance from the input vertices to the output).
+//  - quality: no new triangle has an angle below minAngleDeg unless it replaces a triangle that
+//    was already worse, no normal turns by more than maxNormalTurnDeg, no new edge is longer than
+//    the interface's maximum edge.
+//  - intersections: each new triangle is tested exactly (filters/SelfIntersections.h predicates)
+//    against every triangle whose box it meets (a loose multi-level grid), so the output never
+//    self-intersects when the input does not; the whole output is checked again at the end.
+// Deterministic (serial, ties broken by vertex ids).
+#pragma once
+
+#include "io/InterfaceComplex.h"
+#include "io/Progress.h"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstddef>
+#include <map>
+#include <string>
+
+namespace jawmesh {
+
+struct SimplifyOptions {
+    double toothErrorMm = 0.02;   ///< bound on interfaces of teeth and PDLs (well under a 0.05 mm voxel)
+    double boneErrorMm = 0.08;    ///< bound on bone / outside
+    double pdlMaxEdgeMm = 0.4;    ///< longest new edge on tooth/PDL and PDL/bone (TetGen -Y keeps them)
+    double capMaxEdgeMm = 0.065;  ///< on PDL / outside (the crest cap): >= 3 triangles across 0.2 mm
+    double toothMaxEdgeMm = 1.0;  ///< on tooth / outside (crowns)
+    double boneMaxEdgeMm = 2.5;   ///< on bone / outside
+    double minAngleDeg = 20.0;    ///< smallest angle a collapse may create (see file comment)
+    double maxNormalTurnDeg = 60.0;
+};
+
+struct SimplifyStats {
+    std::size_t inputTriangles = 0;
+    std::size_t outputTriangles = 0;
+    std::size_t outputVertices = 0;
+    std::size_t collapses = 0;
+    /// Output triangles per interface kind ("tooth/pdl", "pdl/bone", "tooth/outside", "pdl/outside",
+    /// "bone/outside", "other").
+    std::map<std::string, std::size_t> trianglesPerKind;
+    double maxErrorMm = 0;         ///< largest tracked distance of an input vertex to its output interface
+    double minAngleDeg = 0;        ///< smallest angle over the output triangles
+    /// Output triangles by smallest angle: [0,5) [5,10) [10,15) [15,20) [20,30) [30,40) [40,60] degrees.
+    std::array<std::size_t, 7> minAngleHistogram{};
+    double seconds = 0;
+};
+
+/// The stats as recorded in run.json and `jawmesh surface --json`.
+nlohmann::json toJson(const SimplifyStats& stats);
+
+/// Interface kind of a label pair, as used in SimplifyStats and reports.
+std::string interfaceKind(Label a, Label b);
+
+/// Simplifies `input` (an extracted interface complex: closed regions, consistent label pairs, no
+/// self-intersections). Seeds are copied unchanged (they lie deeper inside their regions than the
+/// error bounds). Throws Error when the options are invalid or the output check finds an
+/// intersection (which means the input had one); Cancelled when progress is cancelled.
+/// Cost: O(n log n) in the input triangles; memory about 200 bytes per input triangle.
+InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const SimplifyOptions& options = {},
+                                    Progress& progress = noProgress(), SimplifyStats* stats = nullptr);
+
+}  // namespace jawmesh

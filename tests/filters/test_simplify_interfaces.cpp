@@ -1,0 +1,178 @@
+// Interface simplification on the synthetic jaw: far fewer triangles with every region still
+// closed, manifold, of the same topology, within the error bound, intersection-free; deterministic.
+#include "filters/ExtractInterfaces.h"
+#include "filters/SelfIntersections.h"
+#include "filters/SimplifyInterfaces.h"
+#include "filters/TriangleGeometry.h"
+#include "io/Error.h"
+#include "io/PolyWriter.h"
+#include "support_SyntheticLabels.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace jawmesh {
+namespace {
+
+std::set<Label> regionLabels(const InterfaceComplex& c) {
+    std::set<Label> s;
+    for (const auto& p : c.sides) {
+        s.insert(p[0]);
+        s.insert(p[1]);
+    }
+    s.erase(kOutsideLabel);
+    return s;
+}
+
+/// Euler characteristic and number of connected components of a closed surface.
+std::pair<long, int> eulerAndComponents(const SurfaceMesh& m) {
+    std::set<std::pair<int, int>> edges;
+    std::set<int> verts;
+    std::vector<int> parent(m.vertices.size());
+    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = int(i);
+    const std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+    for (const Tri& t : m.triangles)
+        for (int k = 0; k < 3; ++k) {
+            verts.insert(t[k]);
+            edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+            parent[find(t[k])] = find(t[(k + 1) % 3]);
+        }
+    std::set<int> roots;
+    for (int v : verts) roots.insert(find(v));
+    return {long(verts.size()) - long(edges.size()) + long(m.triangles.size()), int(roots.size())};
+}
+
+struct Simplified {
+    InterfaceComplex fine, coarse;
+    SimplifyStats stats;
+};
+
+const Simplified& phantom() {
+    static const Simplified s = [] {
+        Simplified r;
+        r.fine = extractInterfaces(test::jawPhantom(0.05).field);
+        r.coarse = simplifyInterfaces(r.fine, SimplifyOptions{}, noProgress(), &r.stats);
+        return r;
+    }();
+    return s;
+}
+
+double boundFor(Label a, Label b, const SimplifyOptions& o) {
+    const std::string k = interfaceKind(a, b);
+    return k == "bone/outside" ? o.boneErrorMm : o.toothErrorMm;
+}
+
+TEST(SimplifyInterfaces, FewerTrianglesSameRegionsClosedAndIntersectionFree) {
+    const auto& s = phantom();
+    std::printf("phantom: %zu -> %zu triangles, max error %.4f mm, min angle %.1f deg, %.2f s\n",
+                s.fine.surface.triangles.size(), s.coarse.surface.triangles.size(), s.stats.maxErrorMm,
+                s.stats.minAngleDeg, s.stats.seconds);
+    EXPECT_EQ(s.stats.outputTriangles, s.coarse.surface.triangles.size());
+    EXPECT_LT(s.coarse.surface.triangles.size(), s.fine.surface.triangles.size() / 3);
+    EXPECT_EQ(regionLabels(s.coarse), regionLabels(s.fine));
+    std::set<std::pair<Label, Label>> finePairs, coarsePairs;
+    for (const auto& p : s.fine.sides) finePairs.insert({p[0], p[1]});
+    for (const auto& p : s.coarse.sides) coarsePairs.insert({p[0], p[1]});
+    EXPECT_EQ(coarsePairs, finePairs);
+    for (Label L : regionLabels(s.coarse)) EXPECT_EQ(test::checkRegionBoundary(s.coarse, L), "") << labelName(L);
+    const auto si = findSelfIntersections(s.coarse.surface);
+    EXPECT_TRUE(si.pairs.empty()) << si.pairs.size() << " intersecting pairs";
+    EXPECT_TRUE(si.degenerate.empty());
+    std::size_t histogram = 0;
+    for (auto n : s.stats.minAngleHistogram) histogram += n;
+    EXPECT_EQ(histogram, s.coarse.surface.triangles.size());
+}
+
+TEST(SimplifyInterfaces, TopologyOfEveryRegionIsKept) {
+    const auto& s = phantom();
+    for (Label L : regionLabels(s.fine)) {
+        const auto before = eulerAndComponents(regionBoundary(s.fine, L));
+        const auto after = eulerAndComponents(regionBoundary(s.coarse, L));
+        EXPECT_EQ(after, before) << labelName(L) << " (Euler characteristic, components)";
+    }
+    // seeds still inside their own region's boundary and outside every other region
+    for (const auto& seed : s.coarse.seeds)
+        for (Label L : regionLabels(s.coarse)) {
+            const double w = test::windingNumber(regionBoundary(s.coarse, L), seed.point);
+            EXPECT_NEAR(w, L == seed.label ? 1.0 : 0.0, 1e-6) << labelName(seed.label) << " seed vs " << labelName(L);
+        }
+}
+
+TEST(SimplifyInterfaces, HausdorffToTheFineInterfaceWithinTheBound) {
+    const auto& s = phantom();
+    const SimplifyOptions o;
+    EXPECT_LE(s.stats.maxErrorMm, std::max(o.toothErrorMm, o.boneErrorMm) + 1e-9);
+    // Both directions, per label pair, brute force on the small phantom: every fine vertex to the
+    // coarse triangles of its pair, and the centroid of every coarse triangle to the fine ones.
+    std::map<std::pair<Label, Label>, std::vector<std::size_t>> fineBy, coarseBy;
+    for (std::size_t t = 0; t < s.fine.sides.size(); ++t) fineBy[{s.fine.sides[t][0], s.fine.sides[t][1]}].push_back(t);
+    for (std::size_t t = 0; t < s.coarse.sides.size(); ++t)
+        coarseBy[{s.coarse.sides[t][0], s.coarse.sides[t][1]}].push_back(t);
+    const auto dist = [](const Vec3& p, const SurfaceMesh& m, const std::vector<std::size_t>& tris) {
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t t : tris) {
+            const Tri& f = m.triangles[t];
+            best = std::min(best, squaredDistanceToTriangle(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]));
+        }
+        return std::sqrt(best);
+    };
+    for (const auto& [pair, fineTris] : fineBy) {
+        const double bound = boundFor(pair.first, pair.second, o);
+        const auto& coarseTris = coarseBy[pair];
+        double worstFine = 0, worstCoarse = 0;
+        std::set<int> fineVerts;
+        for (std::size_t t : fineTris)
+            for (int v : s.fine.surface.triangles[t]) fineVerts.insert(v);
+        for (int v : fineVerts) worstFine = std::max(worstFine, dist(s.fine.surface.vertices[v], s.coarse.surface, coarseTris));
+        for (std::size_t t : coarseTris) {
+            const Tri& f = s.coarse.surface.triangles[t];
+            const Vec3 c = (s.coarse.surface.vertices[f[0]] + s.coarse.surface.vertices[f[1]] + s.coarse.surface.vertices[f[2]]) / 3;
+            worstCoarse = std::max(worstCoarse, dist(c, s.fine.surface, fineTris));
+        }
+        EXPECT_LE(worstFine, bound + 1e-9) << labelName(pair.first) << "|" << labelName(pair.second);
+        // the other side: no vertex guarantee, but a triangle over the fine interface stays close
+        EXPECT_LE(worstCoarse, 1.5 * bound) << labelName(pair.first) << "|" << labelName(pair.second);
+    }
+}
+
+TEST(SimplifyInterfaces, CapKeepsThreeTrianglesAcrossThePdl) {
+    // The cap (PDL / outside) is 0.2 mm wide: its edges stay below a third of that, or as they were.
+    const auto& s = phantom();
+    const SimplifyOptions o;
+    const auto longestCapEdge = [](const InterfaceComplex& c, std::size_t& n) {
+        double longest = 0;
+        for (std::size_t t = 0; t < c.sides.size(); ++t) {
+            if (interfaceKind(c.sides[t][0], c.sides[t][1]) != "pdl/outside") continue;
+            ++n;
+            const Tri& f = c.surface.triangles[t];
+            for (int k = 0; k < 3; ++k)
+                longest = std::max(longest, (c.surface.vertices[f[k]] - c.surface.vertices[f[(k + 1) % 3]]).norm());
+        }
+        return longest;
+    };
+    std::size_t nFine = 0, nCoarse = 0;
+    const double fine = longestCapEdge(s.fine, nFine), coarse = longestCapEdge(s.coarse, nCoarse);
+    EXPECT_GT(nCoarse, 0u);
+    EXPECT_LE(coarse, std::max(o.capMaxEdgeMm, fine));
+    EXPECT_LT(coarse, 0.2 / 2.5);
+}
+
+TEST(SimplifyInterfaces, DeterministicAndRejectsBadOptions) {
+    const auto& s = phantom();
+    const InterfaceComplex again = simplifyInterfaces(s.fine);
+    EXPECT_EQ(again.surface.triangles, s.coarse.surface.triangles);
+    EXPECT_EQ(again.surface.vertices, s.coarse.surface.vertices);
+    SimplifyOptions bad;
+    bad.minAngleDeg = 75;
+    EXPECT_THROW(simplifyInterfaces(s.fine, bad), Error);
+    bad = SimplifyOptions{};
+    bad.toothErrorMm = -1;
+    EXPECT_THROW(simplifyInterfaces(s.fine, bad), Error);
+    InterfaceComplex broken = s.fine;
+    broken.sides.pop_back();
+    EXPECT_THROW(simplifyInterfaces(broken), Error);
+}
+
+}  // namespace
+}  // namespace jawmesh
