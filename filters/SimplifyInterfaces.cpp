@@ -1,6 +1,7 @@
 #include "filters/SimplifyInterfaces.h"
 
 #include "filters/SelfIntersections.h"
+#include "filters/ShellSeeds.h"
 #include "filters/TriangleGeometry.h"
 #include "io/Error.h"
 
@@ -229,7 +230,7 @@ public:
             out.surface.triangles.push_back(f);
             out.sides.push_back(sides_[t]);
         }
-        out.seeds = in.seeds;
+        out.seeds = seedsInsideShells(out);  // grid seeds may have left a thin region (ShellSeeds.h)
         stats.inputTriangles = in.surface.triangles.size();
         stats.outputTriangles = out.surface.triangles.size();
         stats.outputVertices = out.surface.vertices.size();

@@ -68,8 +68,8 @@ nlohmann::json toJson(const SimplifyStats& stats);
 std::string interfaceKind(Label a, Label b);
 
 /// Simplifies `input` (an extracted interface complex: closed regions, consistent label pairs, no
-/// self-intersections). Seeds are copied unchanged (they lie deeper inside their regions than the
-/// error bounds). Throws Error when the options are invalid or the output check finds an
+/// self-intersections). Seeds are placed anew inside every shell of every region of the output
+/// (filters/ShellSeeds.h). Throws Error when the options are invalid or the output check finds an
 /// intersection (which means the input had one); Cancelled when progress is cancelled.
 /// Cost: O(n log n) in the input triangles; memory about 200 bytes per input triangle.
 InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const SimplifyOptions& options = {},

@@ -91,7 +91,11 @@ TEST(SimplifyInterfaces, TopologyOfEveryRegionIsKept) {
         const auto after = eulerAndComponents(regionBoundary(s.coarse, L));
         EXPECT_EQ(after, before) << labelName(L) << " (Euler characteristic, components)";
     }
-    // seeds still inside their own region's boundary and outside every other region
+    // seeds (placed anew on the output) inside their own region's boundary and outside every
+    // other region, and every region has one
+    std::set<Label> seeded;
+    for (const auto& seed : s.coarse.seeds) seeded.insert(seed.label);
+    EXPECT_EQ(seeded, regionLabels(s.coarse));
     for (const auto& seed : s.coarse.seeds)
         for (Label L : regionLabels(s.coarse)) {
             const double w = test::windingNumber(regionBoundary(s.coarse, L), seed.point);
