@@ -6,7 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
+#include <cstdlib>
+#include <fstream>
 #include <iostream>
 
 namespace jawmesh {
@@ -56,6 +60,19 @@ TEST(ToothAxesFromShape, AgreesWithTheProvidedAxesOfRealMaxillaryTeeth) {
     // With the bone deciding the occlusal side, and from the tooth shapes alone.
     expectAxesAgree(jaw, toothAxesFromShape(jaw.teeth, jaw.jaw, jaw.bone));
     expectAxesAgree(jaw, toothAxesFromShape(jaw.teeth, jaw.jaw, SurfaceMesh()));
+}
+
+TEST(AxesCommand, PrintsTheCaseAxesInTheirJsonShape) {
+    const std::string caseDir = test::sharedData("p26-maxilla-teeth");
+    JAWMESH_REQUIRE_SHARED(caseDir);
+    const auto out = test::scratchDir("axes-command");
+    const std::string cmd = std::string(JAWMESH_BINARY) + " --quiet axes " + caseDir + " --computed --json > " + (out / "axes.json").string();
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::ifstream in(out / "axes.json");
+    const auto axes = nlohmann::json::parse(in);
+    EXPECT_EQ(axes.size(), 15u);
+    for (const auto& [unn, a] : axes.items())
+        for (const char* k : {"c", "x", "y", "z"}) EXPECT_EQ(a.at(k).size(), 3u) << unn << " " << k;
 }
 
 }  // namespace
