@@ -1,11 +1,11 @@
 #include "levelset/MeshToLevelSet.h"
 
 #include "io/Error.h"
+#include "levelset/BandDistance.h"
 #include "levelset/LineWinding.h"
 #include "levelset/OrientSurface.h"
 #include "levelset/ScanlineWinding.h"
 
-#include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
@@ -22,20 +22,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// Lets OpenVDB's conversion poll our cancel flag and report its percentage.
-class VdbInterrupter : public openvdb::util::NullInterrupter {
-public:
-    VdbInterrupter(Progress& p, double from, double to) : p_(p), from_(from), to_(to) {}
-    bool wasInterrupted(int percent = -1) override {
-        if (percent >= 0) p_.update(from_ + (to_ - from_) * percent / 100.0);
-        return p_.cancelled();
-    }
-
-private:
-    Progress& p_;
-    double from_, to_;
-};
-
 // Maps a sub-range of a stage's fraction, so nested steps report into one bar.
 class SubProgress : public Progress {
 public:
@@ -51,12 +37,13 @@ private:
 constexpr int kLeafDim = openvdb::FloatTree::LeafNodeType::DIM;  // 8
 inline int leafOffset(int x, int y, int z) { return ((x & 7) << 6) | ((y & 7) << 3) | (z & 7); }
 
-openvdb::FloatGrid::Ptr unsignedBand(const std::vector<openvdb::Vec3s>& points, const std::vector<openvdb::Vec3I>& polygons,
-                                     const openvdb::math::Transform& transform, double halfWidthVoxels, VdbInterrupter& interrupter) {
-    const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> adapter(points, polygons);
-    const auto band = static_cast<float>(halfWidthVoxels);
-    return openvdb::tools::meshToVolume<openvdb::FloatGrid>(interrupter, adapter, transform, band, band,
-                                                             openvdb::tools::UNSIGNED_DISTANCE_FIELD);
+// Exact unsigned distance band (levelset/BandDistance.h) as a grid on the shared transform.
+openvdb::FloatGrid::Ptr unsignedBand(const std::vector<Vec3>& indexVertices, const std::vector<Tri>& triangles,
+                                     const openvdb::math::Transform::Ptr& transform, double voxelSizeMm,
+                                     double halfWidthVoxels, Progress& progress) {
+    openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(bandDistance(indexVertices, triangles, voxelSizeMm, halfWidthVoxels, progress));
+    grid->setTransform(transform);
+    return grid;
 }
 
 // True for triangles with the same sign on both sides (the inner walls of overlapping shells, a
@@ -153,23 +140,13 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
     if (oriented.triangles.empty()) throw Error("level set: the surface has only degenerate triangles");
     stage.update(0.1);
 
-    // 2. Unsigned narrow band from OpenVDB (index-space input).
+    // 2. Unsigned narrow band (index-space input).
     t0 = Clock::now();
     const auto transform = openvdb::math::Transform::createLinearTransform(voxelSizeMm);
     std::vector<Vec3> indexVertices(oriented.vertices.size());
-    std::vector<openvdb::Vec3s> points(oriented.vertices.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        indexVertices[i] = oriented.vertices[i] / voxelSizeMm;
-        points[i] = openvdb::Vec3s(static_cast<float>(indexVertices[i].x()), static_cast<float>(indexVertices[i].y()),
-                                   static_cast<float>(indexVertices[i].z()));
-    }
-    std::vector<openvdb::Vec3I> polygons(oriented.triangles.size());
-    for (std::size_t i = 0; i < polygons.size(); ++i)
-        polygons[i] = openvdb::Vec3I(static_cast<unsigned>(oriented.triangles[i][0]), static_cast<unsigned>(oriented.triangles[i][1]),
-                                     static_cast<unsigned>(oriented.triangles[i][2]));
-    VdbInterrupter interrupter(progress, 0.1, 0.6);
-    openvdb::FloatGrid::Ptr grid = unsignedBand(points, polygons, *transform, halfWidthVoxels, interrupter);
-    progress.checkCancelled();
+    for (std::size_t i = 0; i < indexVertices.size(); ++i) indexVertices[i] = oriented.vertices[i] / voxelSizeMm;
+    SubProgress bandProgress(progress, 0.1, 0.6);
+    openvdb::FloatGrid::Ptr grid = unsignedBand(indexVertices, oriented.triangles, transform, voxelSizeMm, halfWidthVoxels, bandProgress);
     stats.secondsUnsigned = secondsSince(t0);
     stage.update(0.6);
 
@@ -273,13 +250,12 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
     const std::vector<char> internal = findNonBoundaryTriangles(*grid, oriented, indexVertices, voxelSizeMm, stats.internalTriangles);
     constexpr std::size_t kMinInternal = 16;
     if (stats.internalTriangles >= kMinInternal && stats.internalTriangles < oriented.triangles.size()) {
-        std::vector<openvdb::Vec3I> boundary;
-        boundary.reserve(polygons.size() - stats.internalTriangles);
-        for (std::size_t t = 0; t < polygons.size(); ++t)
-            if (!internal[t]) boundary.push_back(polygons[t]);
-        VdbInterrupter again(progress, 0.95, 0.99);
-        openvdb::FloatGrid::Ptr rebuilt = unsignedBand(points, boundary, *transform, halfWidthVoxels, again);
-        progress.checkCancelled();
+        std::vector<Tri> boundary;
+        boundary.reserve(oriented.triangles.size() - stats.internalTriangles);
+        for (std::size_t t = 0; t < oriented.triangles.size(); ++t)
+            if (!internal[t]) boundary.push_back(oriented.triangles[t]);
+        SubProgress again(progress, 0.95, 0.99);
+        openvdb::FloatGrid::Ptr rebuilt = unsignedBand(indexVertices, boundary, transform, voxelSizeMm, halfWidthVoxels, again);
         openvdb::tree::LeafManager<openvdb::FloatTree> newLeaves(rebuilt->tree());
         newLeaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
             auto acc = grid->getConstAccessor();

@@ -1,13 +1,14 @@
 // Surface mesh -> narrow-band signed distance grid, robust to dirty input. The distance magnitude
-// comes from OpenVDB's unsigned mesh-to-volume conversion; the sign does NOT come from OpenVDB's
-// flood fill (which fills cavities and leaks through holes) but from winding numbers of the
-// orientation-repaired mesh (levelset/OrientSurface.h): every active voxel gets a vote from the
-// exact scanline along each axis (levelset/ScanlineWinding.h); lines that pass through holes
-// abstain, and voxels without a clear majority ask Embree for more lines in generic directions
-// (levelset/LineWinding.h). Inside = winding >= 1, so overlapping shells give their union and
-// inward-oriented inner shells stay cavities. Triangles that end up with the same sign on both
-// sides (the inner walls of overlapping shells) are then left out of the distance, so the band
-// has no spurious near-zero sheet inside the union.
+// is the exact distance to the nearest triangle on every band voxel (levelset/BandDistance.h);
+// the sign does NOT come from OpenVDB's flood fill (which fills cavities and leaks through
+// holes) but from winding numbers of the orientation-repaired mesh (levelset/OrientSurface.h):
+// every active voxel gets a vote from the exact scanline along each axis
+// (levelset/ScanlineWinding.h); lines that pass through holes abstain, and voxels without a
+// clear majority ask Embree for more lines in generic directions (levelset/LineWinding.h).
+// Inside = winding >= 1, so overlapping shells give their union and inward-oriented inner
+// shells stay cavities. Triangles that end up with the same sign on both sides (the inner walls
+// of overlapping shells) are then left out of the distance, so the band has no spurious
+// near-zero sheet inside the union.
 #pragma once
 
 #include "io/Progress.h"
@@ -48,8 +49,9 @@ struct MeshToLevelSetStats {
 /// @throws Error for a non-positive voxel size, a half width below 1, a mesh without triangles or
 ///         one too large for the voxel size; Cancelled when progress is cancelled.
 /// Deterministic: the grid does not depend on the thread count.
-/// Cost: about (surface area / voxel^2) * 2 * halfWidth active voxels; time dominated by the
-/// unsigned distance; memory about 10 bytes per active voxel plus the mesh.
+/// Cost: about (surface area / voxel^2) * 2 * halfWidth active voxels; the exact band distance is
+/// about half the time, orientation, scanlines and sign the rest (docs/BENCHMARKS.md); memory
+/// about 10 bytes per active voxel plus the mesh and the scanline crossings.
 openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, double halfWidthVoxels = 3.0,
                                        Progress& progress = noProgress());
 

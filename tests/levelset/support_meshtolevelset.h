@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <random>
 #include <utility>
@@ -117,6 +118,33 @@ inline SurfaceMesh duplicateFaces(SurfaceMesh m, double fraction, unsigned seed 
         m.triangles.push_back(t);
     }
     return m;
+}
+
+/// Distance from p to triangle abc (any units), by the closest-point regions of the triangle
+/// (Ericson, Real-Time Collision Detection 5.1.5); degenerate triangles give their nearest edge.
+inline double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    auto segment = [&](const Vec3& u, const Vec3& v) {
+        const Vec3 e = v - u;
+        const double len2 = e.squaredNorm();
+        const double t = len2 > 0 ? std::clamp((p - u).dot(e) / len2, 0.0, 1.0) : 0.0;
+        return (p - (u + t * e)).norm();
+    };
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const Vec3 n = ab.cross(ac);
+    if (n.squaredNorm() <= 1e-24 * ab.squaredNorm() * ac.squaredNorm()) return std::min({segment(a, b), segment(b, c), segment(c, a)});
+    // Inside the prism over the triangle: plane distance; otherwise the nearest edge.
+    const bool over = n.dot(ab.cross(ap)) >= 0 && n.dot((c - b).cross(p - b)) >= 0 && n.dot((a - c).cross(p - c)) >= 0;
+    if (over) return std::abs(n.normalized().dot(ap));
+    return std::min({segment(a, b), segment(b, c), segment(c, a)});
+}
+
+/// Distance from p to the nearest triangle, by brute force.
+inline double distanceToTriangles(const std::vector<Vec3>& vertices, const std::vector<Tri>& triangles, const Vec3& p) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Tri& t : triangles)
+        best = std::min(best, pointTriangleDistance(p, vertices[static_cast<std::size_t>(t[0])], vertices[static_cast<std::size_t>(t[1])],
+                                                    vertices[static_cast<std::size_t>(t[2])]));
+    return best;
 }
 
 struct SignCheck {

@@ -1,0 +1,338 @@
+#include "levelset/BandDistance.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+#include <limits>
+#include <memory>
+
+namespace jawmesh {
+
+namespace {
+using LeafT = openvdb::FloatTree::LeafNodeType;
+constexpr int kLeafLog2 = 3;
+constexpr int kLeafDim = 1 << kLeafLog2;  // 8
+static_assert(LeafT::DIM == kLeafDim, "bandDistance assumes 8^3 leaf nodes");
+
+inline int leafOf(int voxel) { return voxel >> kLeafLog2; }  // floor division, also below zero
+
+// Triangles thinner than this (voxels) are measured as their three edges: their normal is noise.
+constexpr double kFlatHeightVoxels = 1e-4;
+
+// One triangle in the frame of one leaf (corners relative to the leaf origin, so float suffices).
+// Plane: h = n.P - hn. Edge k runs from v[k] to v[k+1]; e_k = m_k.P - c_k > 0 outside it (a flat
+// triangle has e_k = 1 everywhere, so it is measured by its edges alone). Projected on xy, the
+// triangle widened by r lies where q_k.(x, y) - o_k < r for all k (q_k = 0, o_k = +inf when the
+// projection is too thin to orient, so the edge never binds).
+struct LocalTriangle {
+    float v[3][3];
+    float edge[3][3];
+    float invLen2[3];
+    float n[3], hn;
+    float m[3][3], c[3];
+    float q[3][2], o[3];
+    float lo[3], hi[3];  // bounding box of the corners
+};
+
+LocalTriangle localTriangle(const std::vector<Vec3>& vx, const Tri& tri, const Vec3& origin) {
+    LocalTriangle t{};
+    Vec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = vx[static_cast<std::size_t>(tri[k])] - origin;
+    Vec3 e[3];
+    double longest2 = 0;
+    for (int k = 0; k < 3; ++k) {
+        e[k] = p[(k + 1) % 3] - p[k];
+        const double len2 = e[k].squaredNorm();
+        longest2 = std::max(longest2, len2);
+        t.invLen2[k] = len2 > 0 ? static_cast<float>(1.0 / len2) : 0.0f;
+        for (int d = 0; d < 3; ++d) {
+            t.v[k][d] = static_cast<float>(p[k][d]);
+            t.edge[k][d] = static_cast<float>(e[k][d]);
+        }
+    }
+    for (int d = 0; d < 3; ++d) {
+        t.lo[d] = std::min({t.v[0][d], t.v[1][d], t.v[2][d]});
+        t.hi[d] = std::max({t.v[0][d], t.v[1][d], t.v[2][d]});
+    }
+    // xy projection: outward edge normals when its orientation is numerically clear.
+    const double area2xy = e[0].x() * e[1].y() - e[0].y() * e[1].x();
+    const bool orientedXy = std::abs(area2xy) > 1e-6 * longest2;
+    for (int k = 0; k < 3; ++k) {
+        const double len = std::sqrt(e[k].x() * e[k].x() + e[k].y() * e[k].y());
+        if (!orientedXy || len == 0.0) {
+            t.o[k] = std::numeric_limits<float>::max();  // q_k.(x, y) - o_k never binds
+            continue;
+        }
+        const double s = area2xy > 0 ? 1.0 : -1.0;
+        const double qx = s * e[k].y() / len, qy = -s * e[k].x() / len;
+        t.q[k][0] = static_cast<float>(qx);
+        t.q[k][1] = static_cast<float>(qy);
+        t.o[k] = static_cast<float>(qx * p[k].x() + qy * p[k].y());
+    }
+    const Vec3 cross = e[0].cross(e[1]);
+    const double area2 = cross.norm();
+    if (!(area2 > kFlatHeightVoxels * std::sqrt(longest2))) {
+        t.c[0] = t.c[1] = t.c[2] = -1.0f;
+        return t;
+    }
+    const Vec3 n = cross / area2;
+    for (int d = 0; d < 3; ++d) t.n[d] = static_cast<float>(n[d]);
+    t.hn = static_cast<float>(n.dot(p[0]));
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 m = e[k].cross(n).normalized();  // in-plane, pointing away from the triangle
+        for (int d = 0; d < 3; ++d) t.m[k][d] = static_cast<float>(m[d]);
+        t.c[k] = static_cast<float>(m.dot(p[k]));
+    }
+    return t;
+}
+
+// Four floats (GCC/Clang vector extension: SIMD on any target, SSE on x86-64).
+typedef float Quad __attribute__((vector_size(16)));
+typedef std::int32_t QuadMask __attribute__((vector_size(16)));
+
+inline Quad splat(float a) { return Quad{a, a, a, a}; }
+
+#if defined(__SSE__)
+inline bool any(QuadMask m) { return _mm_movemask_ps(reinterpret_cast<__m128>(m)) != 0; }
+#else
+inline bool any(QuadMask m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+#endif
+inline Quad minOf(Quad a, Quad b) { return a < b ? a : b; }
+inline Quad maxOf(Quad a, Quad b) { return a > b ? a : b; }
+
+// Squared distance from the points (x, y, z) to edge k.
+inline Quad edgeDistance2(const LocalTriangle& t, int k, float x, float y, Quad z) {
+    const float px = x - t.v[k][0], py = y - t.v[k][1];
+    const Quad pz = z - t.v[k][2];
+    Quad s = ((t.edge[k][0] * px + t.edge[k][1] * py) + t.edge[k][2] * pz) * t.invLen2[k];
+    s = s < 0.0f ? splat(0.0f) : s;
+    s = s > 1.0f ? splat(1.0f) : s;
+    const Quad qx = px - s * t.edge[k][0], qy = py - s * t.edge[k][1], qz = pz - s * t.edge[k][2];
+    return qx * qx + qy * qy + qz * qz;
+}
+
+// Lowers out[0..4) (squared distances of four voxels of a column along z, z = z0 + 0..3) by one
+// triangle: the plane distance over the triangle, else the distance to the nearest edge beyond
+// which the voxel lies. A lower bound (plane distance and distance to the farthest edge's
+// half-plane) skips the edges, or the whole quad, that cannot improve on out[].
+inline void quad(const LocalTriangle& t, float x, float y, float z0, float* out) {
+    Quad best;
+    std::memcpy(&best, out, sizeof best);
+    const Quad z = Quad{0.0f, 1.0f, 2.0f, 3.0f} + z0;
+    const Quad h = (t.n[0] * x + t.n[1] * y - t.hn) + t.n[2] * z;
+    Quad e[3];
+    for (int k = 0; k < 3; ++k) e[k] = (t.m[k][0] * x + t.m[k][1] * y - t.c[k]) + t.m[k][2] * z;
+    const Quad beyond = maxOf(maxOf(maxOf(e[0], e[1]), e[2]), splat(0.0f));
+    const Quad h2 = h * h;
+    const QuadMask open = (h2 + beyond * beyond) < best;
+    if (!any(open)) return;
+    const QuadMask over = beyond <= 0.0f;
+    Quad d2 = splat(std::numeric_limits<float>::max());
+    for (int k = 0; k < 3; ++k)
+        if (any(open & (e[k] > 0.0f))) d2 = minOf(d2, edgeDistance2(t, k, x, y, z));
+    best = minOf(best, over ? h2 : d2);
+    std::memcpy(out, &best, sizeof best);
+}
+
+inline void column(const LocalTriangle& t, float x, float y, float* out) {
+    quad(t, x, y, 0.0f, out);
+    quad(t, x, y, 4.0f, out + 4);
+}
+
+// Lowers best[] (squared index-space distances of the leaf's voxels) by one triangle, one
+// column along z at a time, skipping columns out of reach in xy or in the plane's slab.
+void rasterise(const LocalTriangle& t, float r, float* best) {
+    int lo[2], hi[2];
+    for (int d = 0; d < 2; ++d) {
+        lo[d] = std::max(0, static_cast<int>(std::ceil(t.lo[d] - r)));
+        hi[d] = std::min(kLeafDim - 1, static_cast<int>(std::floor(t.hi[d] + r)));
+        if (lo[d] > hi[d]) return;
+    }
+    if (t.lo[2] - r >= kLeafDim - 1 || t.hi[2] + r <= 0.0f) return;
+    for (int x = lo[0]; x <= hi[0]; ++x) {
+        const float fx = static_cast<float>(x);
+        for (int y = lo[1]; y <= hi[1]; ++y) {
+            const float fy = static_cast<float>(y);
+            // Lower bounds along the whole column: distance in xy to the projected triangle,
+            // and the least |h| over z = 0..7 (h is linear in z).
+            const float inPlane = std::max({t.q[0][0] * fx + t.q[0][1] * fy - t.o[0], t.q[1][0] * fx + t.q[1][1] * fy - t.o[1],
+                                            t.q[2][0] * fx + t.q[2][1] * fy - t.o[2], 0.0f});
+            const float hA = t.n[0] * fx + t.n[1] * fy - t.hn, hB = hA + t.n[2] * (kLeafDim - 1);
+            const float slab = hA > 0.0f && hB > 0.0f ? std::min(hA, hB) : (hA < 0.0f && hB < 0.0f ? -std::max(hA, hB) : 0.0f);
+            const float bound = std::max(inPlane, slab);
+            float* out = best + ((x << 6) | (y << 3));
+            if (bound * bound >= *std::max_element(out, out + kLeafDim)) continue;
+            column(t, fx, fy, out);
+        }
+    }
+}
+
+// Normal of a triangle (index space) and whether it is too thin to trust it.
+bool planeOf(const std::vector<Vec3>& vx, const Tri& tri, Vec3& n, double& offset) {
+    const Vec3& a = vx[static_cast<std::size_t>(tri[0])];
+    const Vec3& b = vx[static_cast<std::size_t>(tri[1])];
+    const Vec3& c = vx[static_cast<std::size_t>(tri[2])];
+    const Vec3 cross = (b - a).cross(c - a);
+    const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
+    const double area2 = cross.norm();
+    if (!(area2 > kFlatHeightVoxels * longest)) return false;
+    n = cross / area2;
+    offset = n.dot(a);
+    return true;
+}
+
+struct Entry {
+    std::uint32_t triangle;
+    std::int32_t leafZ;
+};
+}  // namespace
+
+openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, double voxelSizeMm,
+                                     double halfWidthVoxels, Progress& progress) {
+    const float background = static_cast<float>(halfWidthVoxels * voxelSizeMm);
+    auto tree = std::make_shared<openvdb::FloatTree>(background);
+    if (triangles.empty()) return tree;
+    const double r = halfWidthVoxels;
+
+    // Voxel range of each triangle's band-widened bounding box.
+    auto voxelRange = [&](const Tri& tri, openvdb::Coord& lo, openvdb::Coord& hi) {
+        for (int d = 0; d < 3; ++d) {
+            double a = vx[static_cast<std::size_t>(tri[0])][d], b = a;
+            for (int k = 1; k < 3; ++k) {
+                a = std::min(a, vx[static_cast<std::size_t>(tri[k])][d]);
+                b = std::max(b, vx[static_cast<std::size_t>(tri[k])][d]);
+            }
+            lo[d] = static_cast<int>(std::ceil(a - r));
+            hi[d] = static_cast<int>(std::floor(b + r));
+        }
+    };
+    openvdb::Coord leafMin(std::numeric_limits<int>::max()), leafMax(std::numeric_limits<int>::min());
+    for (const Tri& tri : triangles) {
+        openvdb::Coord lo, hi;
+        voxelRange(tri, lo, hi);
+        for (int d = 0; d < 3; ++d) {
+            leafMin[d] = std::min(leafMin[d], leafOf(lo[d]));
+            leafMax[d] = std::max(leafMax[d], leafOf(hi[d]));
+        }
+    }
+    const std::size_t nx = static_cast<std::size_t>(leafMax.x() - leafMin.x() + 1);
+    const std::size_t ny = static_cast<std::size_t>(leafMax.y() - leafMin.y() + 1);
+    const std::size_t columns = nx * ny;
+
+    // Calls emit(column, leafZ) for every leaf the triangle's band may reach: inside the widened
+    // bounding box and not farther than r from the triangle's plane.
+    auto forEachLeaf = [&](const Tri& tri, auto&& emit) {
+        openvdb::Coord lo, hi;
+        voxelRange(tri, lo, hi);
+        Vec3 n;
+        double offset = 0;
+        const bool planar = planeOf(vx, tri, n, offset);
+        const double halfExtent = 0.5 * (kLeafDim - 1) * (std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z()));
+        for (int lx = leafOf(lo.x()); lx <= leafOf(hi.x()); ++lx)
+            for (int ly = leafOf(lo.y()); ly <= leafOf(hi.y()); ++ly) {
+                const std::size_t col = static_cast<std::size_t>(lx - leafMin.x()) * ny + static_cast<std::size_t>(ly - leafMin.y());
+                for (int lz = leafOf(lo.z()); lz <= leafOf(hi.z()); ++lz) {
+                    if (planar) {
+                        const Vec3 centre = Vec3(lx, ly, lz) * kLeafDim + Vec3::Constant(0.5 * (kLeafDim - 1));
+                        if (std::abs(n.dot(centre) - offset) - halfExtent >= r) continue;
+                    }
+                    emit(col, lz);
+                }
+            }
+    };
+
+    // Bucket (triangle, leaf) pairs by leaf column: count, prefix sum, fill, then sort each
+    // column by (leaf, triangle) so the order does not depend on scheduling.
+    constexpr std::size_t kGrain = 4096;
+    std::vector<std::atomic<std::uint64_t>> cursor(columns);
+    for (auto& c : cursor) c.store(0, std::memory_order_relaxed);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
+        progress.checkCancelled();
+        for (std::size_t t = range.begin(); t < range.end(); ++t)
+            forEachLeaf(triangles[t], [&](std::size_t col, int) { cursor[col].fetch_add(1, std::memory_order_relaxed); });
+    });
+    std::vector<std::uint64_t> offsets(columns + 1);
+    std::uint64_t total = 0;
+    for (std::size_t c = 0; c < columns; ++c) {
+        offsets[c] = total;
+        total += cursor[c].load(std::memory_order_relaxed);
+        cursor[c].store(offsets[c], std::memory_order_relaxed);
+    }
+    offsets[columns] = total;
+    std::vector<Entry> entries(total);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
+        progress.checkCancelled();
+        for (std::size_t t = range.begin(); t < range.end(); ++t)
+            forEachLeaf(triangles[t], [&](std::size_t col, int lz) {
+                entries[cursor[col].fetch_add(1, std::memory_order_relaxed)] = {static_cast<std::uint32_t>(t), lz};
+            });
+    });
+    std::vector<std::atomic<std::uint64_t>>().swap(cursor);
+    progress.update(0.1);
+
+    // Per column: sort, then one leaf per run of equal leafZ.
+    std::vector<std::vector<std::unique_ptr<LeafT>>> leaves(columns);
+    std::atomic<std::size_t> columnsDone{0};
+    const float r2 = static_cast<float>(r * r);
+    // Active values stay below the background even where float rounding would reach it.
+    const float insideBand = std::nextafter(background, 0.0f);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, columns, 16), [&](const tbb::blocked_range<std::size_t>& range) {
+        progress.checkCancelled();
+        float best[LeafT::SIZE];
+        std::vector<std::pair<double, std::uint32_t>> order;
+        for (std::size_t col = range.begin(); col < range.end(); ++col) {
+            Entry* b = entries.data() + offsets[col];
+            Entry* e = entries.data() + offsets[col + 1];
+            std::sort(b, e, [](const Entry& p, const Entry& q) {
+                return p.leafZ < q.leafZ || (p.leafZ == q.leafZ && p.triangle < q.triangle);
+            });
+            const int lx = leafMin.x() + static_cast<int>(col / ny), ly = leafMin.y() + static_cast<int>(col % ny);
+            for (Entry* run = b; run != e;) {
+                Entry* runEnd = run;
+                while (runEnd != e && runEnd->leafZ == run->leafZ) ++runEnd;
+                const openvdb::Coord origin(lx * kLeafDim, ly * kLeafDim, run->leafZ * kLeafDim);
+                const Vec3 originVec(origin.x(), origin.y(), origin.z());
+                std::fill(best, best + LeafT::SIZE, r2);
+                // Nearest triangles first: they tighten best[] so the bounds reject the rest.
+                const Vec3 centre = originVec + Vec3::Constant(0.5 * (kLeafDim - 1));
+                order.clear();
+                for (Entry* p = run; p != runEnd; ++p) {
+                    const Tri& tri = triangles[p->triangle];
+                    const Vec3 c = (vx[static_cast<std::size_t>(tri[0])] + vx[static_cast<std::size_t>(tri[1])] +
+                                    vx[static_cast<std::size_t>(tri[2])]) / 3.0;
+                    order.emplace_back((c - centre).squaredNorm(), p->triangle);
+                }
+                std::sort(order.begin(), order.end());
+                for (const auto& [key, tri] : order)
+                    rasterise(localTriangle(vx, triangles[tri], originVec), static_cast<float>(r), best);
+                std::unique_ptr<LeafT> leaf;
+                for (openvdb::Index i = 0; i < LeafT::SIZE; ++i) {
+                    if (!(best[i] < r2)) continue;
+                    if (!leaf) leaf = std::make_unique<LeafT>(origin, background, false);
+                    leaf->setValueOn(i, std::min(static_cast<float>(std::sqrt(best[i]) * voxelSizeMm), insideBand));
+                }
+                if (leaf) leaves[col].push_back(std::move(leaf));
+                run = runEnd;
+            }
+            const std::size_t done = ++columnsDone;
+            if (done % 1024 == 0) progress.update(0.1 + 0.85 * static_cast<double>(done) / static_cast<double>(columns));
+        }
+    });
+    std::vector<Entry>().swap(entries);
+
+    for (auto& column : leaves)
+        for (auto& leaf : column) tree->addLeaf(leaf.release());
+    progress.update(1.0);
+    return tree;
+}
+
+}  // namespace jawmesh
