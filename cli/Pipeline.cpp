@@ -1,5 +1,6 @@
 #include "cli/Pipeline.h"
 
+#include "fe/FeDecks.h"
 #include "io/Error.h"
 #include "io/GmshWriter.h"
 #include "io/LabelsJson.h"
@@ -155,12 +156,14 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     const auto start = Clock::now();
     StageLog log(record);
 
+    std::map<int, ToothAxes> caseAxes;  // from the case; computed from the mesh when absent
     LabelField field;
     if (!options.fromVdb.empty()) {
         field = log.run(jaw + ": read label field", progress, [&] { return readLabelField(options.fromVdb); });
     } else {
         JawSurfaces surfaces =
             log.run(jaw + ": read", progress, [&] { return loadJaw(jawCase, options.load, progress); });
+        caseAxes = surfaces.axes;
         record["input"] = {{"bone_triangles", surfaces.bone.triangles.size()}, {"teeth", surfaces.teeth.size()}};
         for (const std::string& note : surfaces.notes) record["notes"].push_back(note);
         openvdb::FloatGrid::Ptr bone;
@@ -213,6 +216,15 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         writeMedit(mesh, vol + jaw + ".mesh");
         writeLabelsJson(mesh.labels, vol + "labels.json");
         writeRegionSurfaces(mesh, outJawDir + "/surface_meshes");
+    });
+    // The decks are a convenience on top of the validated mesh: a jaw where no tooth can be
+    // loaded still gets its mesh, with the reason in run.json.
+    log.run(jaw + ": fe decks", progress, [&] {
+        try {
+            for (const std::string& p : writeTippingDecks(mesh, caseAxes, outJawDir)) record["fe_decks"].push_back(p);
+        } catch (const Error& e) {
+            record["warnings"].push_back(std::string("tipping decks not written: ") + e.what());
+        }
     });
 
     record["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();

@@ -5,7 +5,11 @@
 #include "filters/TriangleGeometry.h"
 #include "io/Error.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <queue>
@@ -145,62 +149,123 @@ inline std::uint64_t edgeKey(std::int32_t a, std::int32_t b) {
     return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
 }
 
+/// The mesh between passes, in input vertex ids (input vertices never move, so an id is also a
+/// position). Triangles carry the input vertices they stand for (their error is tracked).
+struct State {
+    const std::vector<Vec3>* points = nullptr;   ///< the input vertices
+    std::vector<Tri> tris;
+    std::vector<std::array<Label, 2>> sides;
+    std::vector<std::vector<std::int32_t>> pts;  ///< per triangle: removed input vertices it carries
+    std::vector<Quadric> quadrics;               ///< per input vertex
+    std::vector<float> err;                      ///< per input vertex: distance to its output triangle
+    std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts;  ///< per curve edge
+};
+
+/// One block of a pass: its triangles (indices into State::tris) and, for the intersection test
+/// only, the triangles of other blocks near it.
+struct Block {
+    std::vector<std::int32_t> tris;
+    std::vector<std::int32_t> obstacles;
+};
+
+struct BlockResult {
+    std::vector<Tri> tris;
+    std::vector<std::array<Label, 2>> sides;
+    std::vector<std::vector<std::int32_t>> pts;
+    std::vector<std::uint64_t> takenCurves;  ///< curve keys this block owned (replaced by curves)
+    std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curves;
+    std::size_t collapses = 0;
+};
+
+/// Serial simplification of one block. Vertices on the block border (with triangles in other
+/// blocks) are frozen: they neither move nor take a collapse (their star is incomplete here).
+/// Writes err and quadrics of the block's own vertices straight into `state` (no other block
+/// touches them); everything else comes back in the BlockResult.
 class Simplifier {
 public:
-    Simplifier(const InterfaceComplex& in, const SimplifyOptions& o)
-        : opt_(o), pos_(in.surface.vertices), tri_(in.surface.triangles), sides_(in.sides),
-          grid_(6.0 * finestEdge(in.surface)) {
-        const std::size_t nv = pos_.size(), nt = tri_.size();
+    Simplifier(State& state, const Block& block, const std::vector<char>& border, const SimplifyOptions& o)
+        : opt_(o), state_(state), points_(*state.points), grid_(cellSize(state, block)) {
+        std::unordered_map<std::int32_t, std::int32_t> local;
+        local.reserve(block.tris.size());
+        const auto localOf = [&](std::int32_t g) {
+            const auto [it, fresh] = local.emplace(g, std::int32_t(gid_.size()));
+            if (fresh) gid_.push_back(g);
+            return it->second;
+        };
+        const std::size_t nt = block.tris.size();
+        tri_.resize(nt);
+        sides_.resize(nt);
+        pts_.resize(nt);
+        for (std::size_t t = 0; t < nt; ++t) {
+            const std::size_t g = std::size_t(block.tris[t]);
+            for (int k = 0; k < 3; ++k) tri_[t][k] = localOf(state.tris[g][k]);
+            sides_[t] = state.sides[g];
+            pts_[t] = state.pts[g];
+        }
+        const std::size_t nv = gid_.size();
+        pos_.resize(nv);
+        q_.resize(nv);
+        frozen_.resize(nv);
+        for (std::size_t l = 0; l < nv; ++l) {
+            pos_[l] = points_[std::size_t(gid_[l])];
+            q_[l] = state.quadrics[std::size_t(gid_[l])];
+            frozen_[l] = border[std::size_t(gid_[l])];
+        }
         pair_.resize(nt);
         alive_.assign(nt, 1);
         vtris_.resize(nv);
-        pts_.resize(nt);
-        q_.resize(nv);
         stamp_.assign(nv, 0);
         dead_.assign(nv, 0);
-        err_.assign(nv, 0.0f);
         cosTurn_ = std::cos(o.maxNormalTurnDeg * kPi / 180.0);
         cosMinAngle_ = std::cos(o.minAngleDeg * kPi / 180.0);
         for (std::size_t t = 0; t < nt; ++t) {
             const Tri& f = tri_[t];
-            for (int k = 0; k < 3; ++k) {
-                if (f[k] < 0 || std::size_t(f[k]) >= nv) throw Error("simplification: triangle index out of range");
-                vtris_[std::size_t(f[k])].push_back(std::int32_t(t));
-            }
+            for (int k = 0; k < 3; ++k) vtris_[std::size_t(f[k])].push_back(std::int32_t(t));
             pair_[t] = interfaceMarker(sides_[t][0], sides_[t][1]);
             rules_.try_emplace(pair_[t], ruleFor(sides_[t][0], sides_[t][1]));
-            const Vec3 n2 = (pos_[f[1]] - pos_[f[0]]).cross(pos_[f[2]] - pos_[f[0]]);
-            const double len = n2.norm();
-            if (len > 0) {
-                const Vec3 n = n2 / len;
-                for (int k = 0; k < 3; ++k) q_[std::size_t(f[k])].addPlane(n, -n.dot(pos_[f[0]]), 0.5 * len);
-            }
             grid_.place(std::int32_t(t), boxOf(pos_[f[0]], pos_[f[1]], pos_[f[2]]));
+            // the curve edges this block owns: those with an endpoint that may move
+            for (int k = 0; k < 3; ++k) {
+                const std::int32_t a = f[k], b = f[(k + 1) % 3];
+                if (frozen_[std::size_t(a)] && frozen_[std::size_t(b)]) continue;
+                const std::uint64_t key = edgeKey(gid_[std::size_t(a)], gid_[std::size_t(b)]);
+                const auto it = state.curvePts.find(key);
+                if (it != state.curvePts.end() && !curvePts_.count(key)) {
+                    curvePts_.emplace(key, it->second);
+                    taken_.push_back(key);
+                }
+            }
+        }
+        obstacles_.reserve(block.obstacles.size());
+        for (std::int32_t g : block.obstacles) {
+            const Tri& f = state.tris[std::size_t(g)];
+            obstacles_.push_back(f);
+            grid_.place(std::int32_t(nt + obstacles_.size() - 1),
+                        boxOf(points_[std::size_t(f[0])], points_[std::size_t(f[1])], points_[std::size_t(f[2])]));
         }
     }
 
-    void run(Progress& progress) {
-        ProgressStage stage(progress, "simplify interfaces");
-        const std::size_t nv = pos_.size();
-        for (std::size_t u = 0; u < nv; ++u) {
-            if (u % 65536 == 0) {
-                progress.checkCancelled();
-                stage.update(0.2 * double(u) / double(nv));
-            }
-            schedule(std::int32_t(u));
+    /// Cell of the intersection grid: a few of the block's shortest edges.
+    static double cellSize(const State& st, const Block& b) {
+        double e = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < std::min<std::size_t>(b.tris.size(), 512); ++i) {
+            const Tri& f = st.tris[std::size_t(b.tris[i])];
+            e = std::min(e, ((*st.points)[std::size_t(f[0])] - (*st.points)[std::size_t(f[1])]).norm());
         }
+        return std::isfinite(e) && e > 0 ? 6.0 * std::max(e, 1e-3) : 0.3;
+    }
+
+    void run(Progress& progress) {
+        const std::size_t nv = pos_.size();
+        for (std::size_t u = 0; u < nv; ++u) schedule(std::int32_t(u));
         std::size_t popped = 0;
-        const double expected = double(heap_.size());
         while (!heap_.empty()) {
             const Candidate c = heap_.top();
             heap_.pop();
-            if (++popped % 65536 == 0) {
-                progress.checkCancelled();
-                stage.update(0.2 + 0.8 * std::min(1.0, double(popped) / (1.5 * expected + 1)));
-            }
+            if (++popped % 65536 == 0) progress.checkCancelled();
             if (dead_[std::size_t(c.u)] || stamp_[std::size_t(c.u)] != c.stamp) continue;
             if (!evaluate(c.u, c.v, &plan_)) {
-                schedule(c.u, true);
+                schedule(c.u, true);  // terminates: unchanged state gives the same verdict
                 continue;
             }
             apply(c.u, c.v, plan_);
@@ -214,38 +279,23 @@ public:
         }
     }
 
-    InterfaceComplex result(const InterfaceComplex& in, SimplifyStats& stats) const {
-        InterfaceComplex out;
-        std::vector<std::int32_t> remap(pos_.size(), -1);
+    /// The block's triangles in input vertex ids; also writes its vertices' quadrics back.
+    BlockResult result() {
+        BlockResult r;
         for (std::size_t t = 0; t < tri_.size(); ++t) {
             if (!alive_[t]) continue;
             Tri f = tri_[t];
-            for (auto& v : f) {
-                if (remap[std::size_t(v)] < 0) {
-                    remap[std::size_t(v)] = std::int32_t(out.surface.vertices.size());
-                    out.surface.vertices.push_back(pos_[std::size_t(v)]);
-                }
-                v = remap[std::size_t(v)];
-            }
-            out.surface.triangles.push_back(f);
-            out.sides.push_back(sides_[t]);
+            for (auto& v : f) v = gid_[std::size_t(v)];
+            r.tris.push_back(f);
+            r.sides.push_back(sides_[t]);
+            r.pts.push_back(std::move(pts_[t]));
         }
-        out.seeds = seedsInsideShells(out);  // grid seeds may have left a thin region (ShellSeeds.h)
-        stats.inputTriangles = in.surface.triangles.size();
-        stats.outputTriangles = out.surface.triangles.size();
-        stats.outputVertices = out.surface.vertices.size();
-        stats.collapses = collapses_;
-        stats.maxErrorMm = err_.empty() ? 0.0 : double(*std::max_element(err_.begin(), err_.end()));
-        stats.minAngleDeg = 180;
-        const double edges[] = {5, 10, 15, 20, 30, 40};
-        for (std::size_t t = 0; t < out.surface.triangles.size(); ++t) {
-            const Tri& f = out.surface.triangles[t];
-            const double a = minAngleDeg(out.surface.vertices[f[0]], out.surface.vertices[f[1]], out.surface.vertices[f[2]]);
-            stats.minAngleDeg = std::min(stats.minAngleDeg, a);
-            stats.minAngleHistogram[std::size_t(std::upper_bound(std::begin(edges), std::end(edges), a) - std::begin(edges))]++;
-            stats.trianglesPerKind[interfaceKind(out.sides[t][0], out.sides[t][1])]++;
-        }
-        return out;
+        for (std::size_t l = 0; l < gid_.size(); ++l)
+            if (!frozen_[l]) state_.quadrics[std::size_t(gid_[l])] = q_[l];
+        r.takenCurves = std::move(taken_);
+        r.curves = std::move(curvePts_);
+        r.collapses = collapses_;
+        return r;
     }
 
 private:
@@ -277,15 +327,6 @@ private:
         std::vector<std::int32_t> curvePoints;      // points of the merged curve edge v-w
     };
 
-    static double finestEdge(const SurfaceMesh& m) {
-        double e = std::numeric_limits<double>::infinity();
-        for (std::size_t t = 0; t < std::min<std::size_t>(m.triangles.size(), 1000); ++t) {
-            const Tri& f = m.triangles[t];
-            e = std::min(e, (m.vertices[f[0]] - m.vertices[f[1]]).norm());
-        }
-        return std::isfinite(e) && e > 0 ? std::max(e, 1e-3) : 0.05;
-    }
-
     static BBox boxOf(const Vec3& a, const Vec3& b, const Vec3& c) {
         BBox box;
         box.extend(a);
@@ -302,6 +343,12 @@ private:
         if (has(LabelKind::Pdl)) return {opt_.toothErrorMm, opt_.pdlMaxEdgeMm};
         if (has(LabelKind::Tooth)) return {opt_.toothErrorMm, opt_.toothMaxEdgeMm};
         return {opt_.boneErrorMm, opt_.boneMaxEdgeMm};
+    }
+
+    std::uint64_t gkey(std::int32_t a, std::int32_t b) const { return edgeKey(gid_[std::size_t(a)], gid_[std::size_t(b)]); }
+    Tri global(Tri f) const {
+        for (auto& v : f) v = gid_[std::size_t(v)];
+        return f;
     }
 
     const PairRule& rule(std::int32_t t) const { return rules_.at(pair_[std::size_t(t)]); }
@@ -365,7 +412,8 @@ private:
     /// The two expensive tests (the removed points' error and intersections) run only when a plan
     /// is asked for (the collapse is about to be made); schedule() ranks candidates without them.
     bool evaluate(std::int32_t u, std::int32_t v, Plan* plan) {
-        if (dead_[std::size_t(u)] || dead_[std::size_t(v)]) return false;
+        if (dead_[std::size_t(u)] || dead_[std::size_t(v)] || frozen_[std::size_t(u)] || frozen_[std::size_t(v)])
+            return false;
         std::vector<Spoke>& sp = spokeBuf_;
         if (!spokes(u, sp)) return false;
         int nFeature = 0;
@@ -445,11 +493,11 @@ private:
             double bound = std::numeric_limits<double>::infinity();
             for (std::int32_t t : vtris_[std::size_t(u)]) bound = std::min(bound, rule(t).errorMm);
             const Vec3& pw = pos_[std::size_t(other->w)];
-            const auto within = [&](std::int32_t p) {
-                return squaredDistanceToSegment(pos_[std::size_t(p)], pv, pw) <= bound * bound;
+            const auto within = [&](std::int32_t p) {  // p: input vertex id
+                return squaredDistanceToSegment(points_[std::size_t(p)], pv, pw) <= bound * bound;
             };
-            if (!within(u)) return false;
-            for (std::uint64_t key : {edgeKey(u, v), edgeKey(u, other->w)}) {
+            if (!within(gid_[std::size_t(u)])) return false;
+            for (std::uint64_t key : {gkey(u, v), gkey(u, other->w)}) {
                 const auto it = curvePts_.find(key);
                 if (it != curvePts_.end())
                     for (std::int32_t p : it->second)
@@ -466,7 +514,7 @@ private:
         const auto place = [&](std::int32_t p, int pairKey, double bound) {
             double best = bound * bound;
             std::int32_t bestT = -1;
-            const Vec3& x = pos_[std::size_t(p)];
+            const Vec3& x = points_[std::size_t(p)];  // p: input vertex id
             for (std::size_t m = 0; m < moved_.size(); ++m) {
                 if (pair_[std::size_t(moved_[m])] != pairKey) continue;
                 const double d = squaredDistanceToTriangle(x, newCorners_[m][0], newCorners_[m][1], newCorners_[m][2]);
@@ -501,21 +549,32 @@ private:
                     if (!place(p, key, bound)) return false;
             if (std::find(pairsDone_.begin(), pairsDone_.end(), key) == pairsDone_.end()) {
                 pairsDone_.push_back(key);
-                if (!place(u, key, bound)) return false;
+                if (!place(gid_[std::size_t(u)], key, bound)) return false;
             }
         }
 
         // Intersections: every new triangle against everything its box meets.
         for (std::size_t m = 0; plan && m < moved_.size(); ++m) {
             const Vec3* P = newCorners_[m].data();
+            const Tri newG = global(newTris_[m]);
             const BBox box = boxOf(P[0], P[1], P[2]);
             bool hit = false;
             grid_.query(box, [&](std::int32_t s) {
-                if (hit || s == moved_[m] || !alive_[std::size_t(s)]) return;
-                if (std::find(uv->tris, uv->tris + uv->n, s) != uv->tris + uv->n) return;
-                const auto mi = std::find(moved_.begin(), moved_.end(), s);
+                if (hit || s == moved_[m]) return;
                 Vec3 Q[3];
                 Tri g;
+                if (std::size_t(s) >= tri_.size()) {  // another block's triangle
+                    g = obstacles_[std::size_t(s) - tri_.size()];
+                    for (int i = 0; i < 3; ++i) Q[i] = points_[std::size_t(g[std::size_t(i)])];
+                    BBox qb = boxOf(Q[0], Q[1], Q[2]);
+                    if ((qb.min.array() > box.max.array()).any() || (box.min.array() > qb.max.array()).any()) return;
+                    if (separatedByPlane(P, newG, Q, g) || separatedByPlane(Q, g, P, newG)) return;
+                    if (trianglesIntersect(P, newG, Q, g)) hit = true;
+                    return;
+                }
+                if (!alive_[std::size_t(s)]) return;
+                if (std::find(uv->tris, uv->tris + uv->n, s) != uv->tris + uv->n) return;
+                const auto mi = std::find(moved_.begin(), moved_.end(), s);
                 if (mi != moved_.end()) {
                     const std::size_t k = std::size_t(mi - moved_.begin());
                     if (k < m) return;  // pair already tested from the other side
@@ -527,8 +586,9 @@ private:
                 }
                 BBox qb = boxOf(Q[0], Q[1], Q[2]);
                 if ((qb.min.array() > box.max.array()).any() || (box.min.array() > qb.max.array()).any()) return;
-                if (separatedByPlane(P, newTris_[m], Q, g) || separatedByPlane(Q, g, P, newTris_[m])) return;
-                if (trianglesIntersect(P, newTris_[m], Q, g)) hit = true;
+                g = global(g);
+                if (separatedByPlane(P, newG, Q, g) || separatedByPlane(Q, g, P, newG)) return;
+                if (trianglesIntersect(P, newG, Q, g)) hit = true;
             });
             if (hit) return false;
         }
@@ -539,8 +599,8 @@ private:
             plan->curveOther = other ? other->w : -1;
             plan->curvePoints.clear();
             if (other) {
-                plan->curvePoints.push_back(u);
-                for (std::uint64_t key : {edgeKey(u, v), edgeKey(u, other->w), edgeKey(v, other->w)}) {
+                plan->curvePoints.push_back(gid_[std::size_t(u)]);
+                for (std::uint64_t key : {gkey(u, v), gkey(u, other->w), gkey(v, other->w)}) {
                     const auto it = curvePts_.find(key);
                     if (it != curvePts_.end())
                         plan->curvePoints.insert(plan->curvePoints.end(), it->second.begin(), it->second.end());
@@ -575,17 +635,17 @@ private:
             const auto [p, t] = plan.assign[i];
             auto& L = pts_[std::size_t(t)];
             if (std::find(L.begin(), L.end(), p) == L.end()) L.push_back(p);
-            err_[std::size_t(p)] = plan.dist[i];
+            state_.err[std::size_t(p)] = plan.dist[i];
         }
         // u itself may be placed once per interface; its error is the largest of those.
         float eu = 0;
         for (std::size_t i = 0; i < plan.assign.size(); ++i)
-            if (plan.assign[i].first == u) eu = std::max(eu, plan.dist[i]);
-        err_[std::size_t(u)] = eu;
+            if (plan.assign[i].first == gid_[std::size_t(u)]) eu = std::max(eu, plan.dist[i]);
+        state_.err[std::size_t(gid_[std::size_t(u)])] = eu;
         if (plan.curveOther >= 0) {
-            curvePts_.erase(edgeKey(u, v));
-            curvePts_.erase(edgeKey(u, plan.curveOther));
-            auto& L = curvePts_[edgeKey(v, plan.curveOther)];
+            curvePts_.erase(gkey(u, v));
+            curvePts_.erase(gkey(u, plan.curveOther));
+            auto& L = curvePts_[gkey(v, plan.curveOther)];
             L = plan.curvePoints;
             std::sort(L.begin(), L.end());
             L.erase(std::unique(L.begin(), L.end()), L.end());
@@ -600,7 +660,7 @@ private:
     /// the intersection test); none when no neighbour does.
     void schedule(std::int32_t u, bool full = false) {
         ++stamp_[std::size_t(u)];
-        if (dead_[std::size_t(u)] || vtris_[std::size_t(u)].empty()) return;
+        if (dead_[std::size_t(u)] || frozen_[std::size_t(u)] || vtris_[std::size_t(u)].empty()) return;
         cand_.clear();
         neighbours(u, cand_);
         costs_.clear();
@@ -613,14 +673,26 @@ private:
             costs_.emplace_back(cost, v);
         }
         std::sort(costs_.begin(), costs_.end());
+        if (!full) {
+            // Lazy: rank by cost only; the pop validates, and only a failure pays for checking
+            // every neighbour (most vertices are collapsed toward their cheapest neighbour).
+            heap_.push(Candidate{costs_.front().first, u, costs_.front().second, stamp_[std::size_t(u)]});
+            return;
+        }
         for (const auto& [cost, v] : costs_)
-            if (evaluate(u, v, full ? &scratchPlan_ : nullptr)) {
+            if (evaluate(u, v, &scratchPlan_)) {
                 heap_.push(Candidate{cost, u, v, stamp_[std::size_t(u)]});
                 return;
             }
     }
 
     const SimplifyOptions& opt_;
+    State& state_;
+    const std::vector<Vec3>& points_;   ///< input vertices (ids of pts_ and curve points)
+    std::vector<std::int32_t> gid_;     ///< local vertex -> input vertex id
+    std::vector<char> frozen_;
+    std::vector<Tri> obstacles_;        ///< other blocks' triangles, input ids
+    std::vector<std::uint64_t> taken_;
     std::vector<Vec3> pos_;
     std::vector<Tri> tri_;
     std::vector<std::array<Label, 2>> sides_;
@@ -631,7 +703,6 @@ private:
     std::vector<Quadric> q_;
     std::vector<std::uint32_t> stamp_;
     std::vector<char> dead_;
-    std::vector<float> err_;                        ///< per input vertex: distance to its triangle
     std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts_;
     std::unordered_map<int, PairRule> rules_;
     BoxGrid grid_;
@@ -684,6 +755,106 @@ std::string interfaceKind(Label a, Label b) {
     return "other";
 }
 
+namespace {
+
+/// Splits the live triangles into cubic blocks (by centroid, grid shifted by offsetMm), marks the
+/// vertices shared by two blocks as border, and gives every block the nearby triangles of its
+/// neighbours as obstacles. blockMm <= 0: one block with everything, no border.
+std::vector<Block> makeBlocks(const State& st, double blockMm, double offsetMm, double marginMm,
+                              std::vector<char>& border) {
+    const std::size_t nt = st.tris.size();
+    border.assign(st.points->size(), 0);
+    if (blockMm <= 0) {
+        Block all;
+        all.tris.resize(nt);
+        for (std::size_t t = 0; t < nt; ++t) all.tris[t] = std::int32_t(t);
+        return {all};
+    }
+    const auto& P = *st.points;
+    using Cell = std::array<int, 3>;
+    std::vector<Cell> cellOf(nt);
+    std::map<Cell, std::size_t> index;
+    for (std::size_t t = 0; t < nt; ++t) {
+        const Tri& f = st.tris[t];
+        const Vec3 c = (P[std::size_t(f[0])] + P[std::size_t(f[1])] + P[std::size_t(f[2])]) / 3.0;
+        for (int k = 0; k < 3; ++k) cellOf[t][std::size_t(k)] = int(std::floor((c[k] - offsetMm) / blockMm));
+        index.emplace(cellOf[t], 0);
+    }
+    std::size_t n = 0;
+    for (auto& [cell, i] : index) i = n++;  // blocks in cell order: deterministic
+    std::vector<Block> blocks(n);
+    std::vector<std::int32_t> owner(P.size(), -1);
+    for (std::size_t t = 0; t < nt; ++t) {
+        const std::size_t b = index.at(cellOf[t]);
+        blocks[b].tris.push_back(std::int32_t(t));
+        for (std::int32_t v : st.tris[t]) {
+            if (owner[std::size_t(v)] < 0) owner[std::size_t(v)] = std::int32_t(b);
+            else if (owner[std::size_t(v)] != std::int32_t(b)) border[std::size_t(v)] = 1;
+        }
+    }
+    // Obstacles: a neighbour's triangle whose box comes within marginMm of the block's cell.
+    for (std::size_t t = 0; t < nt; ++t) {
+        const Tri& f = st.tris[t];
+        BBox box;
+        for (std::int32_t v : f) box.extend(P[std::size_t(v)]);
+        const Cell& c = cellOf[t];
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    if (!dx && !dy && !dz) continue;
+                    const Cell nb{c[0] + dx, c[1] + dy, c[2] + dz};
+                    const auto it = index.find(nb);
+                    if (it == index.end()) continue;
+                    bool near = true;
+                    for (int k = 0; k < 3 && near; ++k) {
+                        const double lo = nb[std::size_t(k)] * blockMm + offsetMm - marginMm;
+                        const double hi = (nb[std::size_t(k)] + 1) * blockMm + offsetMm + marginMm;
+                        near = box.max[k] >= lo && box.min[k] <= hi;
+                    }
+                    if (near) blocks[it->second].obstacles.push_back(std::int32_t(t));
+                }
+    }
+    return blocks;
+}
+
+/// One pass: every block simplified in parallel (blocks only write their own data), then the
+/// results put back in block order.
+std::size_t runPass(State& st, double blockMm, double offsetMm, const SimplifyOptions& o, Progress& progress,
+                    ProgressStage& stage, double from, double to) {
+    std::vector<char> border;
+    const double margin = 2.0 * std::max({o.boneMaxEdgeMm, o.toothMaxEdgeMm, o.pdlMaxEdgeMm});
+    const std::vector<Block> blocks = makeBlocks(st, blockMm, offsetMm, margin, border);
+    std::vector<BlockResult> results(blocks.size());
+    std::atomic<std::size_t> done{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const auto& r) {
+        for (std::size_t b = r.begin(); b != r.end(); ++b) {
+            progress.checkCancelled();
+            Simplifier s(st, blocks[b], border, o);
+            s.run(progress);
+            results[b] = s.result();
+            const std::size_t d = ++done;
+            if (tbb::this_task_arena::current_thread_index() == 0)
+                stage.update(from + (to - from) * double(d) / double(blocks.size()));
+        }
+    });
+    State next;
+    std::size_t collapses = 0;
+    for (BlockResult& r : results) {
+        next.tris.insert(next.tris.end(), r.tris.begin(), r.tris.end());
+        next.sides.insert(next.sides.end(), r.sides.begin(), r.sides.end());
+        for (auto& p : r.pts) next.pts.push_back(std::move(p));
+        for (std::uint64_t key : r.takenCurves) st.curvePts.erase(key);
+        for (auto& [key, pts] : r.curves) st.curvePts[key] = std::move(pts);
+        collapses += r.collapses;
+    }
+    st.tris = std::move(next.tris);
+    st.sides = std::move(next.sides);
+    st.pts = std::move(next.pts);
+    return collapses;
+}
+
+}  // namespace
+
 InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const SimplifyOptions& options,
                                     Progress& progress, SimplifyStats* stats) {
     const auto start = std::chrono::steady_clock::now();
@@ -696,18 +867,74 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
         throw Error("simplification: minimum angle must be in [0, 60) degrees");
     if (!(options.maxNormalTurnDeg > 0 && options.maxNormalTurnDeg <= 180))
         throw Error("simplification: maximum normal turn must be in (0, 180] degrees");
+    if (!(options.blockMm >= 0)) throw Error("simplification: block size must be >= 0");
+    const std::size_t nv = input.surface.vertices.size();
+    for (const Tri& f : input.surface.triangles)
+        for (std::int32_t v : f)
+            if (v < 0 || std::size_t(v) >= nv) throw Error("simplification: triangle index out of range");
+    ProgressStage stage(progress, "simplify interfaces");
 
-    Simplifier s(input, options);
-    s.run(progress);
-    SimplifyStats local;
-    SimplifyStats& st = stats ? *stats : local;
-    st = SimplifyStats{};
-    InterfaceComplex out = s.result(input, st);
+    State st;
+    st.points = &input.surface.vertices;
+    st.tris = input.surface.triangles;
+    st.sides = input.sides;
+    st.pts.resize(st.tris.size());
+    st.quadrics.resize(nv);
+    st.err.assign(nv, 0.0f);
+    const auto& P = input.surface.vertices;
+    for (const Tri& f : st.tris) {
+        const Vec3 n2 = (P[std::size_t(f[1])] - P[std::size_t(f[0])]).cross(P[std::size_t(f[2])] - P[std::size_t(f[0])]);
+        const double len = n2.norm();
+        if (len == 0) continue;
+        const Vec3 n = n2 / len;
+        for (std::int32_t v : f) st.quadrics[std::size_t(v)].addPlane(n, -n.dot(P[std::size_t(f[0])]), 0.5 * len);
+    }
+    // Blocks, blocks shifted by half a block (the first pass's borders inside), then everything.
+    std::size_t collapses = 0;
+    if (options.blockMm > 0) {
+        collapses += runPass(st, options.blockMm, 0.0, options, progress, stage, 0.0, 0.6);
+        collapses += runPass(st, options.blockMm, 0.5 * options.blockMm, options, progress, stage, 0.6, 0.9);
+    }
+    collapses += runPass(st, 0.0, 0.0, options, progress, stage, 0.9, 0.97);
+
+    InterfaceComplex out;
+    std::vector<std::int32_t> remap(nv, -1);
+    for (std::size_t t = 0; t < st.tris.size(); ++t) {
+        Tri f = st.tris[t];
+        for (auto& v : f) {
+            if (remap[std::size_t(v)] < 0) {
+                remap[std::size_t(v)] = std::int32_t(out.surface.vertices.size());
+                out.surface.vertices.push_back(P[std::size_t(v)]);
+            }
+            v = remap[std::size_t(v)];
+        }
+        out.surface.triangles.push_back(f);
+        out.sides.push_back(st.sides[t]);
+    }
     const SelfIntersectionReport check = findSelfIntersections(out.surface);
     if (!check.pairs.empty())
         throw Error("simplification: the output has " + std::to_string(check.pairs.size()) +
                     " intersecting triangle pairs (the input surface must be intersection-free)");
-    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out.seeds = seedsInsideShells(out);  // grid seeds may have left a thin region (ShellSeeds.h)
+
+    SimplifyStats local;
+    SimplifyStats& s = stats ? *stats : local;
+    s = SimplifyStats{};
+    s.inputTriangles = input.surface.triangles.size();
+    s.outputTriangles = out.surface.triangles.size();
+    s.outputVertices = out.surface.vertices.size();
+    s.collapses = collapses;
+    s.maxErrorMm = st.err.empty() ? 0.0 : double(*std::max_element(st.err.begin(), st.err.end()));
+    s.minAngleDeg = 180;
+    const double bins[] = {5, 10, 15, 20, 30, 40};
+    for (std::size_t t = 0; t < out.surface.triangles.size(); ++t) {
+        const Tri& f = out.surface.triangles[t];
+        const double a = minAngleDeg(out.surface.vertices[f[0]], out.surface.vertices[f[1]], out.surface.vertices[f[2]]);
+        s.minAngleDeg = std::min(s.minAngleDeg, a);
+        s.minAngleHistogram[std::size_t(std::upper_bound(std::begin(bins), std::end(bins), a) - std::begin(bins))]++;
+        s.trianglesPerKind[interfaceKind(out.sides[t][0], out.sides[t][1])]++;
+    }
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }
 

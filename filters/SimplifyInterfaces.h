@@ -20,7 +20,8 @@
 //  - intersections: each new triangle is tested exactly (filters/SelfIntersections.h predicates)
 //    against every triangle whose box it meets (a loose multi-level grid), so the output never
 //    self-intersects when the input does not; the whole output is checked again at the end.
-// Deterministic (serial, ties broken by vertex ids).
+// Parallel by blocks (SimplifyOptions::blockMm); deterministic whatever the thread count (blocks
+// are independent and merged in a fixed order; ties broken by vertex ids).
 #pragma once
 
 #include "io/InterfaceComplex.h"
@@ -44,6 +45,10 @@ struct SimplifyOptions {
     double boneMaxEdgeMm = 2.5;   ///< on bone / outside
     double minAngleDeg = 20.0;    ///< smallest angle a collapse may create (see file comment)
     double maxNormalTurnDeg = 60.0;
+    /// Parallel passes over cubic blocks of this edge (border vertices frozen, then blocks shifted
+    /// by half), then one serial pass over everything; 0 = the serial pass only. The result does
+    /// not depend on the thread count.
+    double blockMm = 6.0;
 };
 
 struct SimplifyStats {

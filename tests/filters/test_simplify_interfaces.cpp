@@ -9,6 +9,7 @@
 #include "support_SyntheticLabels.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <set>
 
@@ -176,6 +177,29 @@ TEST(SimplifyInterfaces, DeterministicAndRejectsBadOptions) {
     InterfaceComplex broken = s.fine;
     broken.sides.pop_back();
     EXPECT_THROW(simplifyInterfaces(broken), Error);
+}
+
+TEST(SimplifyInterfaces, SmallBlocksStayValidAndIndependentOfThreads) {
+    // 1.5 mm blocks cut the phantom into several: frozen borders, obstacles and the merge all work.
+    const auto& s = phantom();
+    SimplifyOptions o;
+    o.blockMm = 1.5;
+    InterfaceComplex one, two;
+    {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+        one = simplifyInterfaces(s.fine, o);
+    }
+    {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+        two = simplifyInterfaces(s.fine, o);
+    }
+    EXPECT_EQ(one.surface.triangles, two.surface.triangles);
+    EXPECT_EQ(one.surface.vertices, two.surface.vertices);
+    EXPECT_LT(one.surface.triangles.size(), s.fine.surface.triangles.size() / 3);
+    for (Label L : regionLabels(one)) EXPECT_EQ(test::checkRegionBoundary(one, L), "") << labelName(L);
+    for (Label L : regionLabels(s.fine))
+        EXPECT_EQ(eulerAndComponents(regionBoundary(one, L)), eulerAndComponents(regionBoundary(s.fine, L))) << labelName(L);
+    EXPECT_TRUE(findSelfIntersections(one.surface).pairs.empty());
 }
 
 }  // namespace
