@@ -190,9 +190,12 @@ bool planeOf(const std::vector<Vec3>& vx, const Tri& tri, Vec3& n, double& offse
     return true;
 }
 
+// One (triangle, leaf) pair of a leaf column; nearness = squared distance from the leaf centre to
+// the triangle's centroid, so that each leaf meets its nearest triangles first.
 struct Entry {
-    std::uint32_t triangle;
     std::int32_t leafZ;
+    float nearness;
+    std::uint32_t triangle;
 };
 }  // namespace
 
@@ -228,8 +231,8 @@ openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vec
     const std::size_t ny = static_cast<std::size_t>(leafMax.y() - leafMin.y() + 1);
     const std::size_t columns = nx * ny;
 
-    // Calls emit(column, leafZ) for every leaf the triangle's band may reach: inside the widened
-    // bounding box and not farther than r from the triangle's plane.
+    // Calls emit(column, leafZ, nearness) for every leaf the triangle's band may reach: inside the
+    // widened bounding box and not farther than r from the triangle's plane.
     auto forEachLeaf = [&](const Tri& tri, auto&& emit) {
         openvdb::Coord lo, hi;
         voxelRange(tri, lo, hi);
@@ -237,15 +240,15 @@ openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vec
         double offset = 0;
         const bool planar = planeOf(vx, tri, n, offset);
         const double halfExtent = 0.5 * (kLeafDim - 1) * (std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z()));
+        const Vec3 centroid = (vx[static_cast<std::size_t>(tri[0])] + vx[static_cast<std::size_t>(tri[1])] +
+                               vx[static_cast<std::size_t>(tri[2])]) / 3.0;
         for (int lx = leafOf(lo.x()); lx <= leafOf(hi.x()); ++lx)
             for (int ly = leafOf(lo.y()); ly <= leafOf(hi.y()); ++ly) {
                 const std::size_t col = static_cast<std::size_t>(lx - leafMin.x()) * ny + static_cast<std::size_t>(ly - leafMin.y());
                 for (int lz = leafOf(lo.z()); lz <= leafOf(hi.z()); ++lz) {
-                    if (planar) {
-                        const Vec3 centre = Vec3(lx, ly, lz) * kLeafDim + Vec3::Constant(0.5 * (kLeafDim - 1));
-                        if (std::abs(n.dot(centre) - offset) - halfExtent >= r) continue;
-                    }
-                    emit(col, lz);
+                    const Vec3 centre = Vec3(lx, ly, lz) * kLeafDim + Vec3::Constant(0.5 * (kLeafDim - 1));
+                    if (planar && std::abs(n.dot(centre) - offset) - halfExtent >= r) continue;
+                    emit(col, lz, static_cast<float>((centroid - centre).squaredNorm()));
                 }
             }
     };
@@ -258,7 +261,7 @@ openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vec
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
         progress.checkCancelled();
         for (std::size_t t = range.begin(); t < range.end(); ++t)
-            forEachLeaf(triangles[t], [&](std::size_t col, int) { cursor[col].fetch_add(1, std::memory_order_relaxed); });
+            forEachLeaf(triangles[t], [&](std::size_t col, int, float) { cursor[col].fetch_add(1, std::memory_order_relaxed); });
     });
     std::vector<std::uint64_t> offsets(columns + 1);
     std::uint64_t total = 0;
@@ -272,8 +275,8 @@ openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vec
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
         progress.checkCancelled();
         for (std::size_t t = range.begin(); t < range.end(); ++t)
-            forEachLeaf(triangles[t], [&](std::size_t col, int lz) {
-                entries[cursor[col].fetch_add(1, std::memory_order_relaxed)] = {static_cast<std::uint32_t>(t), lz};
+            forEachLeaf(triangles[t], [&](std::size_t col, int lz, float nearness) {
+                entries[cursor[col].fetch_add(1, std::memory_order_relaxed)] = {lz, nearness, static_cast<std::uint32_t>(t)};
             });
     });
     std::vector<std::atomic<std::uint64_t>>().swap(cursor);
@@ -288,12 +291,15 @@ openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vec
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, columns, 16), [&](const tbb::blocked_range<std::size_t>& range) {
         progress.checkCancelled();
         float best[LeafT::SIZE];
-        std::vector<std::pair<double, std::uint32_t>> order;
         for (std::size_t col = range.begin(); col < range.end(); ++col) {
             Entry* b = entries.data() + offsets[col];
             Entry* e = entries.data() + offsets[col + 1];
+            // By leaf, nearest triangles first (they tighten best[] so that the bounds reject the
+            // rest); the triangle index breaks ties so the order is canonical.
             std::sort(b, e, [](const Entry& p, const Entry& q) {
-                return p.leafZ < q.leafZ || (p.leafZ == q.leafZ && p.triangle < q.triangle);
+                if (p.leafZ != q.leafZ) return p.leafZ < q.leafZ;
+                if (p.nearness != q.nearness) return p.nearness < q.nearness;
+                return p.triangle < q.triangle;
             });
             const int lx = leafMin.x() + static_cast<int>(col / ny), ly = leafMin.y() + static_cast<int>(col % ny);
             for (Entry* run = b; run != e;) {
@@ -302,18 +308,8 @@ openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vec
                 const openvdb::Coord origin(lx * kLeafDim, ly * kLeafDim, run->leafZ * kLeafDim);
                 const Vec3 originVec(origin.x(), origin.y(), origin.z());
                 std::fill(best, best + LeafT::SIZE, r2);
-                // Nearest triangles first: they tighten best[] so the bounds reject the rest.
-                const Vec3 centre = originVec + Vec3::Constant(0.5 * (kLeafDim - 1));
-                order.clear();
-                for (Entry* p = run; p != runEnd; ++p) {
-                    const Tri& tri = triangles[p->triangle];
-                    const Vec3 c = (vx[static_cast<std::size_t>(tri[0])] + vx[static_cast<std::size_t>(tri[1])] +
-                                    vx[static_cast<std::size_t>(tri[2])]) / 3.0;
-                    order.emplace_back((c - centre).squaredNorm(), p->triangle);
-                }
-                std::sort(order.begin(), order.end());
-                for (const auto& [key, tri] : order)
-                    rasterise(localTriangle(vx, triangles[tri], originVec), static_cast<float>(r), best);
+                for (Entry* p = run; p != runEnd; ++p)
+                    rasterise(localTriangle(vx, triangles[p->triangle], originVec), static_cast<float>(r), best);
                 std::unique_ptr<LeafT> leaf;
                 for (openvdb::Index i = 0; i < LeafT::SIZE; ++i) {
                     if (!(best[i] < r2)) continue;
