@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Level sets of the shared OpenMandible case (bone + 14 teeth) with `jawmesh levelset`, one process
 # per file, at --voxel (default 0.05 mm). Repeats the whole set RUNS times (default 3) and prints a
-# Markdown table fragment: per file the median wall time and peak resident memory, then the
-# median of the whole set (sum of the files' wall times per run; peak = largest process).
+# Markdown table fragment: per file the median wall time, CPU time (user + sys) and peak resident
+# memory (from /usr/bin/time), and the median per-stage seconds of meshToLevelSet; then the
+# median of the whole set (sum over the files per run; peak = largest process). The load average
+# before and after is printed too: on a shared machine wall time means little without it.
 # Usage: bench/levelsets.sh [path/to/jawmesh] [voxel_mm] [runs]
 # Environment: JAWMESH_DATA (default: ../shared/data beside the checkout), THREADS (default 0 = all).
 set -euo pipefail
@@ -14,6 +16,7 @@ data="${JAWMESH_DATA:-$here/../../shared/data}/openmandible/input/mandible"
 threads="${THREADS:-0}"
 [ -x "$jawmesh" ] || { echo "no jawmesh executable at $jawmesh (build it, or pass its path)" >&2; exit 1; }
 [ -d "$data" ] || { echo "no shared data at $data" >&2; exit 1; }
+[ -x /usr/bin/time ] || { echo "/usr/bin/time is needed (apt-get install time)" >&2; exit 1; }
 command -v python3 >/dev/null || { echo "python3 is needed to read the --json output" >&2; exit 1; }
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
@@ -23,38 +26,44 @@ for f in "$data"/teeth/tooth_*.stl; do files+=("$f"); done
 
 results="$out/results.tsv"
 : > "$results"
+load_before="$(cut -d' ' -f1-3 /proc/loadavg)"
 for run in $(seq 1 "$runs"); do
   for f in "${files[@]}"; do
     name="$(basename "$f" .stl)"
-    start=$(date +%s.%N)
-    json="$("$jawmesh" --quiet --threads "$threads" levelset "$f" -o "$out/$name.vdb" --voxel "$voxel" --json)"
-    end=$(date +%s.%N)
-    printf '%s\t%s\t%s\t%s\n' "$run" "$name" "$(echo "$end - $start" | bc)" "$json" >> "$results"
+    json="$(/usr/bin/time -f '%e %U %S %M' -o "$out/time.txt" \
+      "$jawmesh" --quiet --threads "$threads" levelset "$f" -o "$out/$name.vdb" --voxel "$voxel" --json)"
+    read -r wall user sys maxrss_kb < "$out/time.txt"
+    printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$run" "$name" "$wall" "$(echo "$user + $sys" | bc)" "$maxrss_kb" "$json" >> "$results"
   done
 done
+load_after="$(cut -d' ' -f1-3 /proc/loadavg)"
 
-python3 - "$results" "$voxel" "$runs" <<'PY'
+python3 - "$results" "$voxel" "$runs" "$load_before" "$load_after" "$(nproc)" <<'PY'
 import json, statistics, sys
 from collections import defaultdict
-path, voxel, runs = sys.argv[1], sys.argv[2], int(sys.argv[3])
+path, voxel, runs, load_before, load_after, cores = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5], sys.argv[6]
 rows = defaultdict(list)
-per_run_wall = defaultdict(float)
-per_run_peak = defaultdict(int)
+per_run = defaultdict(lambda: [0.0, 0.0, 0])
 for line in open(path):
-    run, name, wall, js = line.rstrip("\n").split("\t", 3)
+    run, name, wall, cpu, rss_kb, js = line.rstrip("\n").split("\t", 5)
     j = json.loads(js)
-    rows[name].append((float(wall), j["peak_memory_bytes"], j["active_voxels"], j["input_triangles"], j["stage_seconds"], j["sign"]))
-    per_run_wall[run] += float(wall)
-    per_run_peak[run] = max(per_run_peak[run], j["peak_memory_bytes"])
-print(f"Level sets at {voxel} mm, median of {runs} runs (one process per file):\n")
-print("| file | triangles | active voxels | wall s | peak MB | unsigned s | scanlines s | sign s | fallback voxels |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    rows[name].append(dict(wall=float(wall), cpu=float(cpu), peak=int(rss_kb) * 1024, j=j))
+    per_run[run][0] += float(wall)
+    per_run[run][1] += float(cpu)
+    per_run[run][2] = max(per_run[run][2], int(rss_kb) * 1024)
+print(f"Level sets at {voxel} mm, median of {runs} runs, one process per file, {cores} cores; "
+      f"load average (1/5/15 min) {load_before} before, {load_after} after.\n")
+print("| file | triangles | active voxels | wall s | CPU s | peak MB | orient s | unsigned s | scanlines s | sign s |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 for name in sorted(rows, key=lambda n: (not n.startswith("mandible"), n)):
     r = rows[name]
-    med = lambda k: statistics.median(x[k] for x in r)
-    st = lambda key: statistics.median(x[4][key] for x in r)
-    print(f"| {name} | {r[0][3]:,} | {r[0][2]:,} | {med(0):.2f} | {med(1)/2**20:.0f} | {st('unsigned'):.2f} | "
-          f"{st('scanlines'):.2f} | {st('sign'):.2f} | {statistics.median(x[5]['fallback_voxels'] for x in r):,.0f} |")
-print(f"| **bone + {len(rows)-1} teeth** | | | **{statistics.median(per_run_wall.values()):.2f}** | "
-      f"**{statistics.median(per_run_peak.values())/2**20:.0f}** (largest process) | | | | |")
+    med = lambda key: statistics.median(x[key] for x in r)
+    st = lambda key: statistics.median(x["j"]["stage_seconds"][key] for x in r)
+    j = r[0]["j"]
+    print(f"| {name} | {j['input_triangles']:,} | {j['active_voxels']:,} | {med('wall'):.2f} | {med('cpu'):.2f} | "
+          f"{med('peak')/2**20:.0f} | {st('orient'):.2f} | {st('unsigned'):.2f} | {st('scanlines'):.2f} | {st('sign'):.2f} |")
+walls = sorted(v[0] for v in per_run.values())
+print(f"| **bone + {len(rows)-1} teeth** | | | **{statistics.median(walls):.1f}** ({', '.join(f'{w:.1f}' for w in walls)}) | "
+      f"**{statistics.median(v[1] for v in per_run.values()):.1f}** | **{statistics.median(v[2] for v in per_run.values())/2**20:.0f}** "
+      f"(largest process) | | | | |")
 PY
