@@ -223,7 +223,7 @@ public:
             for (int k = 0; k < 3; ++k) vtris_[std::size_t(f[k])].push_back(std::int32_t(t));
             pair_[t] = interfaceMarker(sides_[t][0], sides_[t][1]);
             rules_.try_emplace(pair_[t], ruleFor(sides_[t][0], sides_[t][1]));
-            grid_.place(std::int32_t(t), boxOf(pos_[f[0]], pos_[f[1]], pos_[f[2]]));
+            if (o.exhaustiveIntersectionChecks) grid_.place(std::int32_t(t), boxOf(pos_[f[0]], pos_[f[1]], pos_[f[2]]));
             // the curve edges this block owns: those with an endpoint that may move
             for (int k = 0; k < 3; ++k) {
                 const std::int32_t a = f[k], b = f[(k + 1) % 3];
@@ -237,7 +237,7 @@ public:
             }
         }
         obstacles_.reserve(block.obstacles.size());
-        for (std::int32_t g : block.obstacles) {
+        for (std::int32_t g : o.exhaustiveIntersectionChecks ? block.obstacles : std::vector<std::int32_t>{}) {
             const Tri& f = state.tris[std::size_t(g)];
             obstacles_.push_back(f);
             grid_.place(std::int32_t(nt + obstacles_.size() - 1),
@@ -511,27 +511,37 @@ private:
             plan->assign.clear();
             plan->dist.clear();
         }
-        const auto place = [&](std::int32_t p, int pairKey, double bound) {
+        // A point is settled by the first triangle within half the bound (the common case, tried
+        // from its own triangle on); otherwise the nearest one within the bound takes it.
+        const auto place = [&](std::int32_t p, int pairKey, double bound, std::int32_t from) {
             double best = bound * bound;
+            const double good = 0.25 * best;
             std::int32_t bestT = -1;
             const Vec3& x = points_[std::size_t(p)];  // p: input vertex id
-            for (std::size_t m = 0; m < moved_.size(); ++m) {
-                if (pair_[std::size_t(moved_[m])] != pairKey) continue;
-                const double d = squaredDistanceToTriangle(x, newCorners_[m][0], newCorners_[m][1], newCorners_[m][2]);
-                if (d <= best) {
-                    best = d;
-                    bestT = moved_[m];
-                }
-            }
-            for (std::int32_t t : vtris_[std::size_t(v)]) {
-                if (pair_[std::size_t(t)] != pairKey || std::find(uv->tris, uv->tris + uv->n, t) != uv->tris + uv->n)
-                    continue;
-                const Tri& f = tri_[std::size_t(t)];
-                const double d = squaredDistanceToTriangle(x, pos_[f[0]], pos_[f[1]], pos_[f[2]]);
+            const auto consider = [&](std::int32_t t, const Vec3& a, const Vec3& b, const Vec3& c) {
+                const double d = squaredDistanceToTriangle(x, a, b, c);
                 if (d < best || (d == best && bestT < 0)) {
                     best = d;
                     bestT = t;
                 }
+                return d <= good;
+            };
+            bool settled = false;
+            const auto own = std::find(moved_.begin(), moved_.end(), from);
+            if (own != moved_.end()) {
+                const auto& C = newCorners_[std::size_t(own - moved_.begin())];
+                settled = consider(from, C[0], C[1], C[2]);
+            }
+            for (std::size_t m = 0; m < moved_.size() && !settled; ++m) {
+                if (pair_[std::size_t(moved_[m])] != pairKey || moved_[m] == from) continue;
+                settled = consider(moved_[m], newCorners_[m][0], newCorners_[m][1], newCorners_[m][2]);
+            }
+            for (std::size_t k = 0; k < vtris_[std::size_t(v)].size() && !settled; ++k) {
+                const std::int32_t t = vtris_[std::size_t(v)][k];
+                if (pair_[std::size_t(t)] != pairKey || std::find(uv->tris, uv->tris + uv->n, t) != uv->tris + uv->n)
+                    continue;
+                const Tri& f = tri_[std::size_t(t)];
+                settled = consider(t, pos_[f[0]], pos_[f[1]], pos_[f[2]]);
             }
             if (bestT < 0) return false;
             if (plan) {
@@ -546,20 +556,31 @@ private:
             const double bound = rule(t).errorMm;
             if (plan)
                 for (std::int32_t p : pts_[std::size_t(t)])
-                    if (!place(p, key, bound)) return false;
+                    if (!place(p, key, bound, t)) return false;
             if (std::find(pairsDone_.begin(), pairsDone_.end(), key) == pairsDone_.end()) {
                 pairsDone_.push_back(key);
-                if (!place(gid_[std::size_t(u)], key, bound)) return false;
+                if (!place(gid_[std::size_t(u)], key, bound, t)) return false;
             }
         }
 
-        // Intersections: every new triangle against everything its box meets.
+        // Intersections: every new triangle against everything its box meets (exhaustive), or
+        // against the triangles around u's and v's neighbours (local: folds and junctions; the
+        // output check catches the rest and triggers an exhaustive rerun).
+        if (plan && !opt_.exhaustiveIntersectionChecks) {
+            localTris_.clear();
+            for (std::int32_t w : nbV_)
+                for (std::int32_t t : vtris_[std::size_t(w)]) localTris_.push_back(t);
+            for (const Spoke& sp2 : sp)
+                for (std::int32_t t : vtris_[std::size_t(sp2.w)]) localTris_.push_back(t);
+            std::sort(localTris_.begin(), localTris_.end());
+            localTris_.erase(std::unique(localTris_.begin(), localTris_.end()), localTris_.end());
+        }
         for (std::size_t m = 0; plan && m < moved_.size(); ++m) {
             const Vec3* P = newCorners_[m].data();
             const Tri newG = global(newTris_[m]);
             const BBox box = boxOf(P[0], P[1], P[2]);
             bool hit = false;
-            grid_.query(box, [&](std::int32_t s) {
+            const auto visit = [&](std::int32_t s) {
                 if (hit || s == moved_[m]) return;
                 Vec3 Q[3];
                 Tri g;
@@ -589,7 +610,10 @@ private:
                 g = global(g);
                 if (separatedByPlane(P, newG, Q, g) || separatedByPlane(Q, g, P, newG)) return;
                 if (trianglesIntersect(P, newG, Q, g)) hit = true;
-            });
+            };
+            if (opt_.exhaustiveIntersectionChecks) grid_.query(box, visit);
+            else
+                for (std::int32_t t : localTris_) visit(t);
             if (hit) return false;
         }
 
@@ -614,7 +638,7 @@ private:
     void apply(std::int32_t u, std::int32_t v, const Plan& plan) {
         for (std::int32_t t : plan.removed) {
             alive_[std::size_t(t)] = 0;
-            grid_.remove(t);
+            if (opt_.exhaustiveIntersectionChecks) grid_.remove(t);
             for (std::int32_t x : tri_[std::size_t(t)]) {
                 auto& L = vtris_[std::size_t(x)];
                 L.erase(std::remove(L.begin(), L.end(), t), L.end());
@@ -628,7 +652,7 @@ private:
             vtris_[std::size_t(v)].push_back(t);
             pts_[std::size_t(t)].clear();
             const Tri& f = tri_[std::size_t(t)];
-            grid_.place(t, boxOf(pos_[f[0]], pos_[f[1]], pos_[f[2]]));
+            if (opt_.exhaustiveIntersectionChecks) grid_.place(t, boxOf(pos_[f[0]], pos_[f[1]], pos_[f[2]]));
         }
         // Reassign the points of u's old triangles (v's untouched triangles keep theirs).
         for (std::size_t i = 0; i < plan.assign.size(); ++i) {
@@ -712,7 +736,7 @@ private:
     std::priority_queue<Candidate> heap_;
     // scratch buffers
     std::vector<Spoke> spokeBuf_;
-    std::vector<std::int32_t> nbV_, moved_, ring_, cand_;
+    std::vector<std::int32_t> nbV_, moved_, ring_, cand_, localTris_;
     std::vector<int> pairsDone_;
     std::vector<std::array<Vec3, 3>> newCorners_;
     std::vector<Tri> newTris_;
@@ -732,7 +756,8 @@ nlohmann::json toJson(const SimplifyStats& s) {
             {"min_angle_deg", s.minAngleDeg},
             {"min_angle_histogram",
              {{"bins_deg", {0, 5, 10, 15, 20, 30, 40, 60}}, {"triangles", s.minAngleHistogram}}},
-            {"seconds", s.seconds}};
+            {"seconds", s.seconds},
+            {"exhaustive_rerun", s.exhaustiveRerun}};
 }
 
 std::string interfaceKind(Label a, Label b) {
@@ -853,6 +878,25 @@ std::size_t runPass(State& st, double blockMm, double offsetMm, const SimplifyOp
     return collapses;
 }
 
+/// The state's live triangles as a compact complex (seeds not set).
+InterfaceComplex complexOf(const State& st, const std::vector<Vec3>& points) {
+    InterfaceComplex out;
+    std::vector<std::int32_t> remap(points.size(), -1);
+    for (std::size_t t = 0; t < st.tris.size(); ++t) {
+        Tri f = st.tris[t];
+        for (auto& v : f) {
+            if (remap[std::size_t(v)] < 0) {
+                remap[std::size_t(v)] = std::int32_t(out.surface.vertices.size());
+                out.surface.vertices.push_back(points[std::size_t(v)]);
+            }
+            v = remap[std::size_t(v)];
+        }
+        out.surface.triangles.push_back(f);
+        out.sides.push_back(st.sides[t]);
+    }
+    return out;
+}
+
 }  // namespace
 
 InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const SimplifyOptions& options,
@@ -889,37 +933,41 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
         const Vec3 n = n2 / len;
         for (std::int32_t v : f) st.quadrics[std::size_t(v)].addPlane(n, -n.dot(P[std::size_t(f[0])]), 0.5 * len);
     }
+    const State initial = st;
     // Blocks, blocks shifted by half a block (the first pass's borders inside), then everything.
     std::size_t collapses = 0;
-    if (options.blockMm > 0) {
-        collapses += runPass(st, options.blockMm, 0.0, options, progress, stage, 0.0, 0.6);
-        collapses += runPass(st, options.blockMm, 0.5 * options.blockMm, options, progress, stage, 0.6, 0.9);
-    }
-    collapses += runPass(st, 0.0, 0.0, options, progress, stage, 0.9, 0.97);
-
-    InterfaceComplex out;
-    std::vector<std::int32_t> remap(nv, -1);
-    for (std::size_t t = 0; t < st.tris.size(); ++t) {
-        Tri f = st.tris[t];
-        for (auto& v : f) {
-            if (remap[std::size_t(v)] < 0) {
-                remap[std::size_t(v)] = std::int32_t(out.surface.vertices.size());
-                out.surface.vertices.push_back(P[std::size_t(v)]);
-            }
-            v = remap[std::size_t(v)];
+    const auto simplify = [&](const SimplifyOptions& o) {
+        if (o.blockMm > 0) {
+            collapses += runPass(st, o.blockMm, 0.0, o, progress, stage, 0.0, 0.6);
+            collapses += runPass(st, o.blockMm, 0.5 * o.blockMm, o, progress, stage, 0.6, 0.9);
         }
-        out.surface.triangles.push_back(f);
-        out.sides.push_back(st.sides[t]);
+        collapses += runPass(st, 0.0, 0.0, o, progress, stage, 0.9, 0.97);
+    };
+    simplify(options);
+    InterfaceComplex out = complexOf(st, P);
+    SelfIntersectionReport check = findSelfIntersections(out.surface);
+    bool rerun = false;
+    if (!check.pairs.empty() && !options.exhaustiveIntersectionChecks) {
+        // The local test missed two sheets meeting away from the collapse: start again with the
+        // exhaustive test (slower, but every collapse is then checked against everything).
+        st = initial;
+        collapses = 0;
+        SimplifyOptions exhaustive = options;
+        exhaustive.exhaustiveIntersectionChecks = true;
+        simplify(exhaustive);
+        out = complexOf(st, P);
+        check = findSelfIntersections(out.surface);
+        rerun = true;
     }
-    const SelfIntersectionReport check = findSelfIntersections(out.surface);
     if (!check.pairs.empty())
         throw Error("simplification: the output has " + std::to_string(check.pairs.size()) +
                     " intersecting triangle pairs (the input surface must be intersection-free)");
     out.seeds = seedsInsideShells(out);  // grid seeds may have left a thin region (ShellSeeds.h)
-
     SimplifyStats local;
     SimplifyStats& s = stats ? *stats : local;
     s = SimplifyStats{};
+    s.exhaustiveRerun = rerun;
+
     s.inputTriangles = input.surface.triangles.size();
     s.outputTriangles = out.surface.triangles.size();
     s.outputVertices = out.surface.vertices.size();

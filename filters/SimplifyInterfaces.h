@@ -18,8 +18,9 @@
 //    was already worse, no normal turns by more than maxNormalTurnDeg, no new edge is longer than
 //    the interface's maximum edge.
 //  - intersections: each new triangle is tested exactly (filters/SelfIntersections.h predicates)
-//    against every triangle whose box it meets (a loose multi-level grid), so the output never
-//    self-intersects when the input does not; the whole output is checked again at the end.
+//    against the triangles around the collapse; the whole output is then checked (Embree broad
+//    phase, exact predicates) and, if two sheets met elsewhere, everything is redone testing each
+//    new triangle against every triangle its box meets (a uniform grid), which cannot miss.
 // Parallel by blocks (SimplifyOptions::blockMm); deterministic whatever the thread count (blocks
 // are independent and merged in a fixed order; ties broken by vertex ids).
 #pragma once
@@ -49,6 +50,10 @@ struct SimplifyOptions {
     /// by half), then one serial pass over everything; 0 = the serial pass only. The result does
     /// not depend on the thread count.
     double blockMm = 6.0;
+    /// Test every new triangle against all triangles its box meets. Off: only against the
+    /// triangles around the collapse (folds, junctions), and if the output check then finds an
+    /// intersection the whole simplification is redone with this on.
+    bool exhaustiveIntersectionChecks = false;
 };
 
 struct SimplifyStats {
@@ -64,6 +69,7 @@ struct SimplifyStats {
     /// Output triangles by smallest angle: [0,5) [5,10) [10,15) [15,20) [20,30) [30,40) [40,60] degrees.
     std::array<std::size_t, 7> minAngleHistogram{};
     double seconds = 0;
+    bool exhaustiveRerun = false;  ///< the local intersection test missed one: redone exhaustively
 };
 
 /// The stats as recorded in run.json and `jawmesh surface --json`.

@@ -194,6 +194,11 @@ TEST(SimplifyInterfaces, SmallBlocksStayValidAndIndependentOfThreads) {
         two = simplifyInterfaces(s.fine, o);
     }
     EXPECT_EQ(one.surface.triangles, two.surface.triangles);
+    // the exhaustive intersection test gives a valid result too
+    o.exhaustiveIntersectionChecks = true;
+    const InterfaceComplex ex = simplifyInterfaces(s.fine, o);
+    EXPECT_TRUE(findSelfIntersections(ex.surface).pairs.empty());
+    EXPECT_LT(ex.surface.triangles.size(), s.fine.surface.triangles.size() / 3);
     EXPECT_EQ(one.surface.vertices, two.surface.vertices);
     EXPECT_LT(one.surface.triangles.size(), s.fine.surface.triangles.size() / 3);
     for (Label L : regionLabels(one)) EXPECT_EQ(test::checkRegionBoundary(one, L), "") << labelName(L);
