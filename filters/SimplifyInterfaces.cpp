@@ -918,22 +918,27 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
             if (v < 0 || std::size_t(v) >= nv) throw Error("simplification: triangle index out of range");
     ProgressStage stage(progress, "simplify interfaces");
 
-    State st;
-    st.points = &input.surface.vertices;
-    st.tris = input.surface.triangles;
-    st.sides = input.sides;
-    st.pts.resize(st.tris.size());
-    st.quadrics.resize(nv);
-    st.err.assign(nv, 0.0f);
+    // The starting state is rebuilt rather than kept for a possible rerun: a copy would hold
+    // ~100 bytes per input vertex for the whole run (about 1.3 GB on a mandible).
     const auto& P = input.surface.vertices;
-    for (const Tri& f : st.tris) {
-        const Vec3 n2 = (P[std::size_t(f[1])] - P[std::size_t(f[0])]).cross(P[std::size_t(f[2])] - P[std::size_t(f[0])]);
-        const double len = n2.norm();
-        if (len == 0) continue;
-        const Vec3 n = n2 / len;
-        for (std::int32_t v : f) st.quadrics[std::size_t(v)].addPlane(n, -n.dot(P[std::size_t(f[0])]), 0.5 * len);
-    }
-    const State initial = st;
+    const auto startState = [&] {
+        State st;
+        st.points = &P;
+        st.tris = input.surface.triangles;
+        st.sides = input.sides;
+        st.pts.resize(st.tris.size());
+        st.quadrics.resize(nv);
+        st.err.assign(nv, 0.0f);
+        for (const Tri& f : st.tris) {
+            const Vec3 n2 = (P[std::size_t(f[1])] - P[std::size_t(f[0])]).cross(P[std::size_t(f[2])] - P[std::size_t(f[0])]);
+            const double len = n2.norm();
+            if (len == 0) continue;
+            const Vec3 n = n2 / len;
+            for (std::int32_t v : f) st.quadrics[std::size_t(v)].addPlane(n, -n.dot(P[std::size_t(f[0])]), 0.5 * len);
+        }
+        return st;
+    };
+    State st = startState();
     // Blocks, blocks shifted by half a block (the first pass's borders inside), then everything.
     std::size_t collapses = 0;
     const auto simplify = [&](const SimplifyOptions& o) {
@@ -950,7 +955,7 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     if (!check.pairs.empty() && !options.exhaustiveIntersectionChecks) {
         // The local test missed two sheets meeting away from the collapse: start again with the
         // exhaustive test (slower, but every collapse is then checked against everything).
-        st = initial;
+        st = startState();
         collapses = 0;
         SimplifyOptions exhaustive = options;
         exhaustive.exhaustiveIntersectionChecks = true;
