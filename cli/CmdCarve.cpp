@@ -30,10 +30,6 @@ struct CarveCliOptions {
     bool json = false;
 };
 
-double secondsSince(std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 nlohmann::json summaryJson(const CarveSummary& s, const CarveOptions& o) {
     nlohmann::json teeth = nlohmann::json::array();
     for (const auto& t : s.teeth) {

@@ -38,7 +38,7 @@ void runLevelset(const LevelsetOptions& opt, const GlobalOptions& global) {
         file.write({grid});
         file.close();
     });
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
     if (!opt.json) return;
     const openvdb::CoordBBox ib = grid->evalActiveVoxelBoundingBox();
     const openvdb::Vec3d wmin = grid->indexToWorld(ib.min()), wmax = grid->indexToWorld(ib.max());

@@ -27,10 +27,6 @@ struct SurfaceCliOptions {
     bool json = false;
 };
 
-double secondsSince(std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
     const auto start = std::chrono::steady_clock::now();
     Progress& progress = terminalProgress(global);
@@ -41,7 +37,9 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
     const double secondsRead = secondsSince(start);
 
     const auto tExtract = std::chrono::steady_clock::now();
-    InterfaceComplex complex = extractInterfaces(field, ExtractOptions{}, progress);
+    ExtractOptions extract;
+    extract.findSeeds = !opt.simplifyOn;  // simplification places them on its output
+    InterfaceComplex complex = extractInterfaces(field, extract, progress);
     const double secondsExtract = secondsSince(tExtract);
     SimplifyStats stats;
     if (opt.simplifyOn) complex = simplifyInterfaces(complex, opt.simplify, progress, &stats);

@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <chrono>
+
 #include <string>
 
 namespace jawmesh {
@@ -30,6 +32,11 @@ struct CommandRegistration {
 
 /// Adds every registered subcommand to app.
 void addRegisteredCommands(CLI::App& app, GlobalOptions& global);
+
+/// Wall seconds since t (the per-step timings commands report).
+inline double secondsSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
 
 /// The terminal progress reporter of this process (quiet or not per the global options).
 Progress& terminalProgress(const GlobalOptions& global);

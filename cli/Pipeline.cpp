@@ -186,7 +186,11 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     const std::vector<int> teeth = teethInField(field);
 
     InterfaceComplex complex =
-        log.run(jaw + ": interface surface", progress, [&] { return extractInterfaces(field, options.extract, progress); });
+        log.run(jaw + ": interface surface", progress, [&] {
+            ExtractOptions extract = options.extract;
+            extract.findSeeds = false;  // simplification places them on its output
+            return extractInterfaces(field, extract, progress);
+        });
     field = LabelField{};  // the grids are no longer needed; free them before TetGen
     SimplifyStats simplifyStats;
     complex = log.run(jaw + ": simplify surface", progress,

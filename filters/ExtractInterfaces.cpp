@@ -133,7 +133,7 @@ InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions
         }
     });
     stage.update(0.8);
-    out.seeds = findRegionSeeds(*labels, field.distances, progress);
+    if (options.findSeeds) out.seeds = findRegionSeeds(*labels, field.distances, progress);
     return out;
 }
 

@@ -28,6 +28,9 @@ struct ExtractOptions {
     /// Join diagonal-only contacts first (see WellComposedLabels.h). When false the labels must
     /// already be well-composed, otherwise Error is thrown.
     bool repairDiagonalContacts = true;
+    /// Find one seed per region component (findRegionSeeds). Off when the caller places seeds
+    /// itself, as simplification does (filters/ShellSeeds.h): the segmentation is then wasted.
+    bool findSeeds = true;
 };
 
 /// Extracts the interface complex of `field`: surface, label pair per triangle (sides[t][0] is the

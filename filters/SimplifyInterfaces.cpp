@@ -761,22 +761,15 @@ nlohmann::json toJson(const SimplifyStats& s) {
 }
 
 std::string interfaceKind(Label a, Label b) {
-    const auto kind = [](Label l) {
-        if (l == kOutsideLabel) return std::string("outside");
-        switch (labelKind(l)) {
-            case LabelKind::Bone: return std::string("bone");
-            case LabelKind::Tooth: return std::string("tooth");
-            case LabelKind::Pdl: return std::string("pdl");
-            default: return std::string("outside");
-        }
-    };
-    static const char* order[] = {"tooth", "pdl", "bone", "outside"};
-    std::string ka = kind(a), kb = kind(b);
-    const auto rank = [&](const std::string& k) { return std::find(std::begin(order), std::end(order), k) - std::begin(order); };
-    if (rank(ka) > rank(kb)) std::swap(ka, kb);
-    const std::string name = ka + "/" + kb;
-    for (const char* known : {"tooth/pdl", "pdl/bone", "tooth/outside", "pdl/outside", "bone/outside"})
-        if (name == known) return name;
+    using K = LabelKind;
+    const auto kind = [](Label l) { return l == kOutsideLabel ? K::Outside : labelKind(l); };
+    K ka = kind(a), kb = kind(b);
+    if (ka > kb) std::swap(ka, kb);  // enum order: Outside, Bone, Tooth, Pdl
+    if (ka == K::Tooth && kb == K::Pdl) return "tooth/pdl";
+    if (ka == K::Bone && kb == K::Pdl) return "pdl/bone";
+    if (ka == K::Outside && kb == K::Tooth) return "tooth/outside";
+    if (ka == K::Outside && kb == K::Pdl) return "pdl/outside";
+    if (ka == K::Outside && kb == K::Bone) return "bone/outside";
     return "other";
 }
 

@@ -161,4 +161,11 @@ double windingNumber(const SurfaceMesh& mesh, const Vec3& p) {
     return sum / (4.0 * M_PI);
 }
 
+std::set<Label> regionLabels(const InterfaceComplex& complex) {
+    std::set<Label> s;
+    for (const auto& p : complex.sides) s.insert(p.begin(), p.end());
+    s.erase(kOutsideLabel);
+    return s;
+}
+
 }  // namespace jawmesh::test

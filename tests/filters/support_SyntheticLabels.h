@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <map>
+#include <set>
 #include <vector>
 
 namespace jawmesh::test {
@@ -38,6 +39,9 @@ SyntheticField jawPhantom(double voxel = 0.05);
 
 /// Label field given voxel by voxel (dims nx*ny*nz, x fastest), no distance fields.
 LabelField rawField(const std::vector<Label>& labels, int nx, int ny, int nz, double voxel);
+
+/// The region labels of a complex (every label on a side of a triangle but the outside).
+std::set<Label> regionLabels(const InterfaceComplex& complex);
 
 /// Label of the voxel nearest to p in a label field.
 Label voxelLabelAt(const LabelField& field, const Vec3& p);

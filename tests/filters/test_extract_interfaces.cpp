@@ -15,15 +15,7 @@
 namespace jawmesh {
 namespace {
 
-std::set<Label> regionLabels(const InterfaceComplex& c) {
-    std::set<Label> s;
-    for (const auto& p : c.sides) {
-        s.insert(p[0]);
-        s.insert(p[1]);
-    }
-    s.erase(kOutsideLabel);
-    return s;
-}
+using test::regionLabels;
 
 // Properties every extraction must have, whatever the field.
 void expectValidComplex(const InterfaceComplex& c, const LabelField& field) {

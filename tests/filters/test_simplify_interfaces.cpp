@@ -16,15 +16,7 @@
 namespace jawmesh {
 namespace {
 
-std::set<Label> regionLabels(const InterfaceComplex& c) {
-    std::set<Label> s;
-    for (const auto& p : c.sides) {
-        s.insert(p[0]);
-        s.insert(p[1]);
-    }
-    s.erase(kOutsideLabel);
-    return s;
-}
+using test::regionLabels;
 
 /// Euler characteristic and number of connected components of a closed surface.
 std::pair<long, int> eulerAndComponents(const SurfaceMesh& m) {
