@@ -60,6 +60,8 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
         j["simplify"] = toJson(stats);
         j["simplify"]["options"] = {{"tooth_error_mm", opt.simplify.toothErrorMm},
                                     {"bone_error_mm", opt.simplify.boneErrorMm},
+                                    {"bone_far_error_mm", opt.simplify.boneFarErrorMm},
+                                    {"bone_near_teeth_mm", opt.simplify.boneNearTeethMm},
                                     {"min_angle_deg", opt.simplify.minAngleDeg}};
     }
     writeFileAtomically(opt.output + "/surface.json", [&](std::ostream& os) { os << j.dump(2) << "\n"; }, false);
@@ -79,7 +81,12 @@ void addSurfaceCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("-o,--output", opt->output, "Output folder")->required();
     cmd->add_option("--tooth-error", opt->simplify.toothErrorMm, "Error bound on tooth and PDL interfaces, mm (default 0.02)")
         ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--bone-error", opt->simplify.boneErrorMm, "Error bound on the bone surface, mm (default 0.08)")
+    cmd->add_option("--bone-error", opt->simplify.boneErrorMm, "Error bound on the bone surface near teeth, mm (default 0.08)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--bone-far-error", opt->simplify.boneFarErrorMm,
+                    "Error bound on the bone surface farther than --near-teeth from any tooth, mm (default 0.15)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--near-teeth", opt->simplify.boneNearTeethMm, "Bone within this distance of a tooth or PDL is near, mm (default 2)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--min-angle", opt->simplify.minAngleDeg, "Smallest angle a collapse may create, degrees (default 20)")
         ->check(CLI::Range(0.0, 59.0));

@@ -85,6 +85,8 @@ nlohmann::json runOptionsToJson(const RunOptions& o) {
         {"gap_bridge_mm", o.carve.gapBridgeMm},
         {"surface_tooth_error_mm", o.simplify.toothErrorMm},
         {"surface_bone_error_mm", o.simplify.boneErrorMm},
+        {"surface_bone_far_error_mm", o.simplify.boneFarErrorMm},
+        {"surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm},
         {"surface_min_angle_deg", o.simplify.minAngleDeg},
         {"tet_radius_edge", o.tet.radiusEdgeRatio},
         {"tet_min_dihedral_deg", o.tet.minDihedralDeg},
@@ -122,6 +124,8 @@ void applyRunConfig(const std::string& path, RunOptions& o) {
         readKey(j, "gap_bridge_mm", o.carve.gapBridgeMm);
         readKey(j, "surface_tooth_error_mm", o.simplify.toothErrorMm);
         readKey(j, "surface_bone_error_mm", o.simplify.boneErrorMm);
+        readKey(j, "surface_bone_far_error_mm", o.simplify.boneFarErrorMm);
+        readKey(j, "surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm);
         readKey(j, "surface_min_angle_deg", o.simplify.minAngleDeg);
         readKey(j, "tet_radius_edge", o.tet.radiusEdgeRatio);
         readKey(j, "tet_min_dihedral_deg", o.tet.minDihedralDeg);

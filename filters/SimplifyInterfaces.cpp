@@ -1,5 +1,7 @@
 #include "filters/SimplifyInterfaces.h"
 
+#include "filters/NearTeeth.h"
+
 #include "filters/SelfIntersections.h"
 #include "filters/ShellSeeds.h"
 #include "filters/TriangleGeometry.h"
@@ -39,8 +41,9 @@ struct Quadric {
 };
 
 struct PairRule {
-    double errorMm;
+    double errorMm;     ///< bound for input vertices near a tooth (all of them off bone/outside)
     double maxEdgeMm;
+    double farErrorMm;  ///< bound for input vertices far from every tooth
 };
 
 /// Uniform grid of triangle boxes: a triangle is listed in every cell its box meets (cells of a
@@ -158,6 +161,7 @@ struct State {
     std::vector<std::vector<std::int32_t>> pts;  ///< per triangle: removed input vertices it carries
     std::vector<Quadric> quadrics;               ///< per input vertex
     std::vector<float> err;                      ///< per input vertex: distance to its output triangle
+    std::vector<char> nearTeeth;                 ///< per input vertex (filters/NearTeeth.h)
     std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts;  ///< per curve edge
 };
 
@@ -339,10 +343,10 @@ private:
         const LabelKind ka = a == kOutsideLabel ? LabelKind::Outside : labelKind(a);
         const LabelKind kb = b == kOutsideLabel ? LabelKind::Outside : labelKind(b);
         const auto has = [&](LabelKind k) { return ka == k || kb == k; };
-        if (has(LabelKind::Pdl) && has(LabelKind::Outside)) return {opt_.toothErrorMm, opt_.capMaxEdgeMm};
-        if (has(LabelKind::Pdl)) return {opt_.toothErrorMm, opt_.pdlMaxEdgeMm};
-        if (has(LabelKind::Tooth)) return {opt_.toothErrorMm, opt_.toothMaxEdgeMm};
-        return {opt_.boneErrorMm, opt_.boneMaxEdgeMm};
+        if (has(LabelKind::Pdl) && has(LabelKind::Outside)) return {opt_.toothErrorMm, opt_.capMaxEdgeMm, opt_.toothErrorMm};
+        if (has(LabelKind::Pdl)) return {opt_.toothErrorMm, opt_.pdlMaxEdgeMm, opt_.toothErrorMm};
+        if (has(LabelKind::Tooth)) return {opt_.toothErrorMm, opt_.toothMaxEdgeMm, opt_.toothErrorMm};
+        return {opt_.boneErrorMm, opt_.boneMaxEdgeMm, std::max(opt_.boneErrorMm, opt_.boneFarErrorMm)};
     }
 
     std::uint64_t gkey(std::int32_t a, std::int32_t b) const { return edgeKey(gid_[std::size_t(a)], gid_[std::size_t(b)]); }
@@ -352,6 +356,11 @@ private:
     }
 
     const PairRule& rule(std::int32_t t) const { return rules_.at(pair_[std::size_t(t)]); }
+    /// The error bound of input vertex p on triangle t's interface.
+    double boundOf(std::int32_t p, std::int32_t t) const {
+        const PairRule& r = rule(t);
+        return state_.nearTeeth[std::size_t(p)] ? r.errorMm : r.farErrorMm;
+    }
 
     std::int32_t third(std::int32_t t, std::int32_t a, std::int32_t b) const {
         for (std::int32_t x : tri_[std::size_t(t)])
@@ -553,13 +562,12 @@ private:
         pairsDone_.clear();
         for (std::int32_t t : vtris_[std::size_t(u)]) {
             const int key = pair_[std::size_t(t)];
-            const double bound = rule(t).errorMm;
             if (plan)
                 for (std::int32_t p : pts_[std::size_t(t)])
-                    if (!place(p, key, bound, t)) return false;
+                    if (!place(p, key, boundOf(p, t), t)) return false;
             if (std::find(pairsDone_.begin(), pairsDone_.end(), key) == pairsDone_.end()) {
                 pairsDone_.push_back(key);
-                if (!place(gid_[std::size_t(u)], key, bound, t)) return false;
+                if (!place(gid_[std::size_t(u)], key, boundOf(gid_[std::size_t(u)], t), t)) return false;
             }
         }
 
@@ -753,6 +761,7 @@ nlohmann::json toJson(const SimplifyStats& s) {
             {"collapses", s.collapses},
             {"triangles_per_kind", s.trianglesPerKind},
             {"max_error_mm", s.maxErrorMm},
+            {"max_error_near_teeth_mm", s.maxErrorNearTeethMm},
             {"min_angle_deg", s.minAngleDeg},
             {"min_angle_histogram",
              {{"bins_deg", {0, 5, 10, 15, 20, 30, 40, 60}}, {"triangles", s.minAngleHistogram}}},
@@ -897,8 +906,8 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     const auto start = std::chrono::steady_clock::now();
     if (input.sides.size() != input.surface.triangles.size())
         throw Error("simplification: one label pair per triangle is required");
-    for (double x : {options.toothErrorMm, options.boneErrorMm, options.pdlMaxEdgeMm, options.capMaxEdgeMm,
-                     options.toothMaxEdgeMm, options.boneMaxEdgeMm})
+    for (double x : {options.toothErrorMm, options.boneErrorMm, options.boneFarErrorMm, options.boneNearTeethMm,
+                     options.pdlMaxEdgeMm, options.capMaxEdgeMm, options.toothMaxEdgeMm, options.boneMaxEdgeMm})
         if (!(x >= 0) || !std::isfinite(x)) throw Error("simplification: error bounds and edge lengths must be >= 0");
     if (!(options.minAngleDeg >= 0 && options.minAngleDeg < 60))
         throw Error("simplification: minimum angle must be in [0, 60) degrees");
@@ -914,6 +923,7 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     // The starting state is rebuilt rather than kept for a possible rerun: a copy would hold
     // ~100 bytes per input vertex for the whole run (about 1.3 GB on a mandible).
     const auto& P = input.surface.vertices;
+    std::vector<char> nearTeeth = verticesNearTeeth(input, options.boneNearTeethMm);
     const auto startState = [&] {
         State st;
         st.points = &P;
@@ -922,6 +932,7 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
         st.pts.resize(st.tris.size());
         st.quadrics.resize(nv);
         st.err.assign(nv, 0.0f);
+        st.nearTeeth = nearTeeth;
         for (const Tri& f : st.tris) {
             const Vec3 n2 = (P[std::size_t(f[1])] - P[std::size_t(f[0])]).cross(P[std::size_t(f[2])] - P[std::size_t(f[0])]);
             const double len = n2.norm();
@@ -971,6 +982,8 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     s.outputVertices = out.surface.vertices.size();
     s.collapses = collapses;
     s.maxErrorMm = st.err.empty() ? 0.0 : double(*std::max_element(st.err.begin(), st.err.end()));
+    for (std::size_t v = 0; v < st.err.size(); ++v)
+        if (nearTeeth[v]) s.maxErrorNearTeethMm = std::max(s.maxErrorNearTeethMm, double(st.err[v]));
     s.minAngleDeg = 180;
     const double bins[] = {5, 10, 15, 20, 30, 40};
     for (std::size_t t = 0; t < out.surface.triangles.size(); ++t) {

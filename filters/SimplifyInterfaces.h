@@ -11,7 +11,7 @@
 //  - topology: the link condition on the whole complex (Dey et al. 1999), so no region vanishes,
 //    splits or changes genus, and no two triangles come to share their three vertices.
 //  - error: every input vertex removed so far stays within the bound of its interface (label
-//    pair) of the output triangles of that interface, and every removed curve vertex within the
+//    pair; on bone / outside looser far from the teeth) of the output triangles of that interface, and every removed curve vertex within the
 //    bound of its curve (tracked exactly; the reported maximum is this one-sided Hausdorff
 //    distance from the input vertices to the output).
 //  - quality: no new triangle has an angle below minAngleDeg unless it replaces a triangle that
@@ -39,7 +39,9 @@ namespace jawmesh {
 
 struct SimplifyOptions {
     double toothErrorMm = 0.02;   ///< bound on interfaces of teeth and PDLs (well under a 0.05 mm voxel)
-    double boneErrorMm = 0.08;    ///< bound on bone / outside
+    double boneErrorMm = 0.08;    ///< bound on bone / outside within boneNearTeethMm of a tooth or PDL
+    double boneFarErrorMm = 0.15; ///< bound on bone / outside farther away (max with boneErrorMm)
+    double boneNearTeethMm = 2.0; ///< "near a tooth" (filters/NearTeeth.h)
     double pdlMaxEdgeMm = 0.4;    ///< longest new edge on tooth/PDL and PDL/bone (TetGen -Y keeps them)
     double capMaxEdgeMm = 0.065;  ///< on PDL / outside (the crest cap): >= 3 triangles across 0.2 mm
     double toothMaxEdgeMm = 1.0;  ///< on tooth / outside (crowns)
@@ -65,6 +67,7 @@ struct SimplifyStats {
     /// "bone/outside", "other").
     std::map<std::string, std::size_t> trianglesPerKind;
     double maxErrorMm = 0;         ///< largest tracked distance of an input vertex to its output interface
+    double maxErrorNearTeethMm = 0;  ///< the same over input vertices near a tooth (NearTeeth.h)
     double minAngleDeg = 0;        ///< smallest angle over the output triangles
     /// Output triangles by smallest angle: [0,5) [5,10) [10,15) [15,20) [20,30) [30,40) [40,60] degrees.
     std::array<std::size_t, 7> minAngleHistogram{};
