@@ -205,7 +205,20 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     TetStats tetStats;
     TetMesh mesh = log.run(jaw + ": tetrahedralize", progress,
                            [&] { return tetrahedralize(complex, options.tet, progress, &tetStats); });
-    record["tetgen"] = {{"switches", tetStats.switches}, {"attempts", tetStats.attempts}};
+    const SliverStats& sl = tetStats.slivers;
+    record["tetgen"] = {{"switches", tetStats.switches},
+                        {"attempts", tetStats.attempts},
+                        {"seconds", tetStats.seconds},
+                        {"sliver_improvement",
+                         {{"below_target_before", sl.badBefore},
+                          {"below_target_after", sl.badAfter},
+                          {"min_dihedral_before_deg", sl.minDihedralBeforeDeg},
+                          {"min_dihedral_after_deg", sl.minDihedralAfterDeg},
+                          {"smoothed", sl.smoothed},
+                          {"flips23", sl.flips23},
+                          {"flips32", sl.flips32},
+                          {"splits", sl.splits},
+                          {"seconds", sl.seconds}}}};
 
     const ValidationReport report =
         log.run(jaw + ": validate", progress, [&] { return requireValid(mesh, teeth); });

@@ -287,6 +287,12 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
         if (options.preserveBoundary) checkAttributesAgainstSides(plc, raw.mesh);
         const std::size_t removed = keepLabeled(raw.mesh);
         if (raw.mesh.tets.empty()) throw Error(kWhat, "no tetrahedron received a label: are the seeds inside their regions?");
+        SliverStats slivers;
+        if (options.improveSlivers) {
+            SliverOptions so;
+            so.targetMinDihedralDeg = options.minDihedralDeg;
+            improveSlivers(raw.mesh, so, &slivers);
+        }
         const QualityStats q = measureQuality(raw.mesh, options.minDihedralDeg);
         const bool better = !haveBest || q.belowDihedralThreshold < bestQuality.belowDihedralThreshold ||
                             (q.belowDihedralThreshold == bestQuality.belowDihedralThreshold && q.minDihedralDeg > bestQuality.minDihedralDeg);
@@ -296,6 +302,7 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
             haveBest = true;
             st.switches = ladder[i].switches + (ladder[i].optMaxDihedral != 165.0 ? " (optmaxdihedral " + fmt(ladder[i].optMaxDihedral) + ")" : "");
             st.outsideTetsRemoved = removed;
+            st.slivers = slivers;
         }
         if (bestQuality.belowDihedralThreshold == 0) break;
     }

@@ -4,6 +4,7 @@
 #include "io/InterfaceComplex.h"
 #include "io/Progress.h"
 #include "io/TetMesh.h"
+#include "tet/ImproveSlivers.h"
 
 #include <string>
 
@@ -27,6 +28,9 @@ struct TetOptions {
     /// on intersecting facets, so turning this off is only safe for input known to be clean.
     bool checkIntersections = true;
     int repairAttempts = 2;         ///< extra runs with stronger optimisation when min dihedral is low
+    /// After TetGen, raise tets below minDihedralDeg by smoothing, flips and splits inside the
+    /// regions (tet/ImproveSlivers.h); interfaces are untouched.
+    bool improveSlivers = true;
 };
 
 /// What a run did, for run.json and the report.
@@ -42,6 +46,7 @@ struct TetStats {
     double minDihedralDeg = 0;
     double maxRadiusEdge = 0;
     std::size_t belowMinDihedral = 0;   ///< tets still below options.minDihedralDeg (0 when met)
+    SliverStats slivers;                ///< what the sliver improvement did on the kept run
 };
 
 /// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.

@@ -1,0 +1,114 @@
+// Sliver improvement: a grid mesh of two regions whose inner nodes were pushed around until many
+// tets are flat gets its bad tets repaired without touching the interface, the boundary or the
+// volume of either region.
+#include "GridTetMesh.h"
+#include "tet/ElementQuality.h"
+#include "tet/ImproveSlivers.h"
+#include "tet/TetFaceAdjacency.h"
+#include "tet/ValidateTetMesh.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+#include <set>
+
+namespace jawmesh {
+namespace {
+
+constexpr Label kBone = kMandibleBoneLabel;
+const Label kTooth = toothLabel(24);
+
+double volume(const TetMesh& m, std::size_t t) {
+    const auto& e = m.tets[t];
+    const Vec3& a = m.nodes[std::size_t(e[0])];
+    return (m.nodes[std::size_t(e[1])] - a).dot((m.nodes[std::size_t(e[2])] - a).cross(m.nodes[std::size_t(e[3])] - a)) / 6.0;
+}
+
+/// Faces between different labels or on the outside, as sorted node triples.
+std::set<std::array<std::int32_t, 3>> interfaceFaces(const TetMesh& m) {
+    std::set<std::array<std::int32_t, 3>> out;
+    const TetFaceAdjacency adj = tetFaceAdjacency(m);
+    for (std::size_t g = 0; g < adj.groupCount(); ++g) {
+        const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
+        if (adj.groupSize(g) == 2 && m.labels[std::size_t(f0.tet)] == m.labels[std::size_t(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet)])
+            continue;
+        out.insert(f0.key);
+    }
+    return out;
+}
+
+/// Every node off the interface (x = 3) and off the box pushed randomly, keeping tets positive.
+TetMesh distortedTwoRegionGrid() {
+    TetMesh m = test::gridTetMesh(6, 6, 6, 1.0, [](const Vec3& c) { return c.x() < 3 ? kBone : kTooth; });
+    std::vector<std::vector<std::size_t>> star(m.nodes.size());
+    for (std::size_t t = 0; t < m.tets.size(); ++t)
+        for (auto v : m.tets[t]) star[std::size_t(v)].push_back(t);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-0.45, 0.45);
+    for (int round = 0; round < 3; ++round)
+        for (std::size_t v = 0; v < m.nodes.size(); ++v) {
+            const Vec3 p = m.nodes[v];
+            const bool onBox = (p.array() <= 1e-9).any() || (p.array() >= 6 - 1e-9).any();
+            if (onBox || std::abs(p.x() - 3) < 1e-9) continue;
+            const Vec3 q = p + Vec3(u(rng), u(rng), u(rng));
+            if (std::abs(q.x() - 3) < 0.05) continue;  // stay off the interface plane
+            m.nodes[v] = q;
+            for (auto t : star[v])
+                if (volume(m, t) <= 1e-6) {
+                    m.nodes[v] = p;
+                    break;
+                }
+        }
+    return m;
+}
+
+TEST(ImproveSlivers, RepairsFlatTetsWithoutTouchingInterfacesOrVolumes) {
+    TetMesh m = distortedTwoRegionGrid();
+    const TetMesh before = m;
+    const QualityStats q0 = measureQuality(m, 10.0);
+    ASSERT_GT(q0.belowDihedralThreshold, 20u) << "the distortion must create slivers to repair";
+
+    SliverStats st;
+    improveSlivers(m, SliverOptions{}, &st);
+    const QualityStats q1 = measureQuality(m, 10.0);
+    std::printf("below 10 deg: %zu -> %zu, min dihedral %.2f -> %.2f deg (smoothed %zu, 2-3 %zu, 3-2 %zu, splits %zu+%zu)\n",
+                q0.belowDihedralThreshold, q1.belowDihedralThreshold, q0.minDihedralDeg, q1.minDihedralDeg, st.smoothed,
+                st.flips23, st.flips32, st.splits, st.faceSplits);
+    EXPECT_EQ(st.badBefore, q0.belowDihedralThreshold);
+    EXPECT_EQ(st.badAfter, q1.belowDihedralThreshold);
+    EXPECT_NEAR(st.minDihedralAfterDeg, q1.minDihedralDeg, 1e-9);
+    EXPECT_LE(q1.belowDihedralThreshold, q0.belowDihedralThreshold / 10);
+    EXPECT_GT(q1.minDihedralDeg, q0.minDihedralDeg + 3.0);
+
+    EXPECT_TRUE(validateTetMesh(m, {}).valid());
+    for (std::size_t t = 0; t < m.tets.size(); ++t) EXPECT_GT(volume(m, t), 0.0) << t;
+    // interfaces and the outside: the same faces on the same, unmoved nodes
+    EXPECT_EQ(interfaceFaces(m), interfaceFaces(before));
+    for (const auto& f : interfaceFaces(before))
+        for (auto v : f) EXPECT_EQ(m.nodes[std::size_t(v)], before.nodes[std::size_t(v)]);
+    // each region keeps its volume (27 + 27 mm^3... here 3 x 6 x 6 each)
+    std::map<Label, double> vol;
+    for (std::size_t t = 0; t < m.tets.size(); ++t) vol[m.labels[t]] += volume(m, t);
+    EXPECT_NEAR(vol[kBone], 108.0, 1e-9);
+    EXPECT_NEAR(vol[kTooth], 108.0, 1e-9);
+}
+
+TEST(ImproveSlivers, LeavesAGoodMeshAloneAndIsDeterministic) {
+    TetMesh good = test::gridTetMesh(3, 3, 3, 1.0, [](const Vec3&) { return kBone; });
+    const TetMesh copy = good;
+    SliverStats st;
+    improveSlivers(good, SliverOptions{}, &st);
+    EXPECT_EQ(st.badBefore, 0u);
+    EXPECT_EQ(good.tets, copy.tets);
+    EXPECT_EQ(good.nodes, copy.nodes);
+
+    TetMesh a = distortedTwoRegionGrid(), b = distortedTwoRegionGrid();
+    improveSlivers(a);
+    improveSlivers(b);
+    EXPECT_EQ(a.tets, b.tets);
+    EXPECT_EQ(a.nodes, b.nodes);
+}
+
+}  // namespace
+}  // namespace jawmesh

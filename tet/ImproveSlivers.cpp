@@ -1,0 +1,423 @@
+#include "tet/ImproveSlivers.h"
+
+#include "tet/TetFaceAdjacency.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace jawmesh {
+
+namespace {
+
+constexpr double kInvalid = -3.0;  // below every cosine-based score: an inverted or flat tet
+
+/// Score of a tet: minus the cosine of its smallest interior dihedral angle (monotone in that
+/// angle, cheaper than the angle itself); kInvalid when not positively oriented.
+double score(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    const Vec3 u = b - a, v = c - a, w = d - a;
+    if (!(u.dot(v.cross(w)) > 0)) return kInvalid;
+    const Vec3 n[4] = {(c - b).cross(d - b), (d - a).cross(c - a), (b - a).cross(d - a), (c - a).cross(b - a)};
+    double len[4];
+    for (int k = 0; k < 4; ++k) {
+        len[k] = n[k].norm();
+        if (!(len[k] > 0)) return kInvalid;
+    }
+    double worstCos = -1.0;  // cosine of the interior dihedral angle = -cos(angle of outward normals)
+    for (int k = 0; k < 4; ++k)
+        for (int l = k + 1; l < 4; ++l) worstCos = std::max(worstCos, -n[k].dot(n[l]) / (len[k] * len[l]));
+    return -worstCos;
+}
+
+double scoreToDeg(double s) { return s <= kInvalid ? 0.0 : std::acos(std::clamp(-s, -1.0, 1.0)) * 180.0 / M_PI; }
+
+double signedVolume6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).dot((c - a).cross(d - a)); }
+
+class SliverImprover {
+public:
+    SliverImprover(TetMesh& m, const SliverOptions& o) : m_(m), target_(-std::cos(o.targetMinDihedralDeg * M_PI / 180.0)) {
+        alive_.assign(m.tets.size(), 1);
+        star_.resize(m.nodes.size());
+        for (std::size_t t = 0; t < m.tets.size(); ++t)
+            for (auto v : m.tets[t]) star_[std::size_t(v)].push_back(std::int32_t(t));
+        // Vertices on an interface or the mesh boundary are fixed.
+        fixed_.assign(m.nodes.size(), 0);
+        const TetFaceAdjacency adj = tetFaceAdjacency(m);
+        for (std::size_t g = 0; g < adj.groupCount(); ++g) {
+            const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
+            const bool shared = adj.groupSize(g) == 2 &&
+                                m.labels[std::size_t(f0.tet)] == m.labels[std::size_t(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet)];
+            if (!shared)
+                for (auto v : f0.key) fixed_[std::size_t(v)] = 1;
+        }
+    }
+
+    double tetScore(std::int32_t t) const {
+        const Tet& e = m_.tets[std::size_t(t)];
+        return score(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
+    }
+
+    /// The bad tets, worst first (ties by index).
+    std::vector<std::int32_t> badTets() const {
+        std::vector<std::pair<double, std::int32_t>> bad;
+        for (std::size_t t = 0; t < m_.tets.size(); ++t)
+            if (alive_[t]) {
+                const double s = tetScore(std::int32_t(t));
+                if (s < target_) bad.emplace_back(s, std::int32_t(t));
+            }
+        std::sort(bad.begin(), bad.end());
+        std::vector<std::int32_t> out;
+        for (auto& b : bad) out.push_back(b.second);
+        return out;
+    }
+
+    /// One attempt to improve tet t; true when something was changed.
+    bool improve(std::int32_t t, SliverStats& st) {
+        if (!alive_[std::size_t(t)] || tetScore(t) >= target_) return false;
+        const Tet e = m_.tets[std::size_t(t)];
+        for (auto v : e)
+            if (!fixed_[std::size_t(v)] && smooth(v)) {
+                ++st.smoothed;
+                return true;
+            }
+        if (flip23Around(t, st) || flip32Around(t, st)) return true;
+        return splitAround(t, st) || splitFaceAround(t, st);
+    }
+
+    void compact() {
+        TetMesh out;
+        out.nodes = std::move(m_.nodes);
+        for (std::size_t t = 0; t < m_.tets.size(); ++t)
+            if (alive_[t]) {
+                out.tets.push_back(m_.tets[t]);
+                out.labels.push_back(m_.labels[t]);
+            }
+        m_ = std::move(out);
+    }
+
+private:
+    const Vec3& P(std::int32_t v) const { return m_.nodes[std::size_t(v)]; }
+
+    double minScore(const std::vector<std::int32_t>& tets) const {
+        double s = std::numeric_limits<double>::infinity();
+        for (auto t : tets) s = std::min(s, tetScore(t));
+        return s;
+    }
+
+    /// Smallest score of the tets `tets` (by vertices) with vertex v placed at p.
+    double scoreWith(const std::vector<Tet>& tets, std::int32_t v, const Vec3& p) const {
+        double s = std::numeric_limits<double>::infinity();
+        for (const Tet& e : tets) {
+            const Vec3* q[4];
+            for (int k = 0; k < 4; ++k) q[k] = e[std::size_t(k)] == v ? &p : &m_.nodes[std::size_t(e[std::size_t(k)])];
+            s = std::min(s, score(*q[0], *q[1], *q[2], *q[3]));
+            if (s <= kInvalid) break;
+        }
+        return s;
+    }
+
+    /// Pattern search for the position of v maximising the smallest score of `tets`; returns the
+    /// best position and its score (start position and score if nothing better).
+    std::pair<Vec3, double> bestPosition(const std::vector<Tet>& tets, std::int32_t v, Vec3 start) const {
+        double best = scoreWith(tets, v, start);
+        double shortest = std::numeric_limits<double>::infinity();
+        for (const Tet& e : tets)
+            for (auto w : e)
+                if (w != v) shortest = std::min(shortest, (P(w) - start).norm());
+        if (!std::isfinite(shortest) || shortest <= 0) return {start, best};
+        static const double dirs[14][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
+                                           {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {1, -1, -1}, {-1, 1, 1}, {-1, 1, -1},
+                                           {-1, -1, 1}, {-1, -1, -1}};
+        double h = 0.25 * shortest;
+        Vec3 p = start;
+        for (int iter = 0; iter < 60 && h > 1e-4 * shortest; ++iter) {
+            double stepBest = best;
+            Vec3 stepP = p;
+            for (const auto& d : dirs) {
+                const Vec3 q = p + h * Vec3(d[0], d[1], d[2]).normalized();
+                const double s = scoreWith(tets, v, q);
+                if (s > stepBest) {
+                    stepBest = s;
+                    stepP = q;
+                }
+            }
+            if (stepBest > best) {
+                best = stepBest;
+                p = stepP;
+            } else {
+                h *= 0.5;
+            }
+        }
+        return {p, best};
+    }
+
+    bool smooth(std::int32_t v) {
+        std::vector<Tet> tets;
+        for (auto t : star_[std::size_t(v)]) tets.push_back(m_.tets[std::size_t(t)]);
+        const double before = scoreWith(tets, v, P(v));
+        const auto [p, after] = bestPosition(tets, v, P(v));
+        if (!(after > before + 1e-9)) return false;
+        m_.nodes[std::size_t(v)] = p;
+        return true;
+    }
+
+    std::vector<std::int32_t> tetsWith(std::int32_t a, std::int32_t b) const {
+        std::vector<std::int32_t> out;
+        for (auto t : star_[std::size_t(a)]) {
+            const Tet& e = m_.tets[std::size_t(t)];
+            if (std::find(e.begin(), e.end(), b) != e.end()) out.push_back(t);
+        }
+        return out;
+    }
+
+    void kill(std::int32_t t) {
+        alive_[std::size_t(t)] = 0;
+        for (auto v : m_.tets[std::size_t(t)]) {
+            auto& s = star_[std::size_t(v)];
+            s.erase(std::find(s.begin(), s.end(), t));
+        }
+    }
+
+    void add(const Tet& e, Label label) {
+        const auto t = std::int32_t(m_.tets.size());
+        m_.tets.push_back(e);
+        m_.labels.push_back(label);
+        alive_.push_back(1);
+        for (auto v : e) star_[std::size_t(v)].push_back(t);
+    }
+
+    /// Replaces `old` by `fresh` (same label) when every new tet is positive, the volume is the
+    /// same and the smallest score rises.
+    bool replaceIfBetter(const std::vector<std::int32_t>& old, std::vector<Tet> fresh) {
+        double volOld = 0, volNew = 0;
+        for (auto t : old) {
+            const Tet& e = m_.tets[std::size_t(t)];
+            volOld += signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
+        }
+        double sNew = std::numeric_limits<double>::infinity();
+        for (Tet& e : fresh) {
+            double v = signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
+            if (v < 0) {
+                std::swap(e[2], e[3]);
+                v = -v;
+            }
+            volNew += v;
+            sNew = std::min(sNew, score(P(e[0]), P(e[1]), P(e[2]), P(e[3])));
+        }
+        if (!(sNew > minScore(old) + 1e-9)) return false;
+        if (std::abs(volNew - volOld) > 1e-9 * volOld) return false;  // not a re-triangulation of the same volume
+        const Label label = m_.labels[std::size_t(old[0])];
+        for (auto t : old) kill(t);
+        for (const Tet& e : fresh) add(e, label);
+        return true;
+    }
+
+    /// 2-3 flip of a face of t whose other tet has the same label.
+    bool flip23Around(std::int32_t t, SliverStats& st) {
+        const Tet e = m_.tets[std::size_t(t)];
+        for (int k = 0; k < 4; ++k) {
+            const std::int32_t d = e[std::size_t(k)];
+            std::int32_t f[3], n = 0;
+            for (int j = 0; j < 4; ++j)
+                if (j != k) f[n++] = e[std::size_t(j)];
+            std::int32_t other = -1;
+            for (auto s : star_[std::size_t(f[0])]) {
+                if (s == t) continue;
+                const Tet& g = m_.tets[std::size_t(s)];
+                if (std::find(g.begin(), g.end(), f[1]) != g.end() && std::find(g.begin(), g.end(), f[2]) != g.end()) {
+                    other = s;
+                    break;
+                }
+            }
+            if (other < 0 || m_.labels[std::size_t(other)] != m_.labels[std::size_t(t)]) continue;
+            std::int32_t apex = -1;
+            for (auto v : m_.tets[std::size_t(other)])
+                if (v != f[0] && v != f[1] && v != f[2]) apex = v;
+            std::vector<Tet> fresh = {{f[0], f[1], d, apex}, {f[1], f[2], d, apex}, {f[2], f[0], d, apex}};
+            if (replaceIfBetter({t, other}, fresh)) {
+                ++st.flips23;
+                return true;
+            }
+        }
+        return false;
+    }
+
+    /// The ring of edge (a, b) when it lies inside one region: its tets (all of label `label`,
+    /// every face around the edge shared by two of them); empty otherwise.
+    std::vector<std::int32_t> interiorRing(std::int32_t a, std::int32_t b, Label label) const {
+        std::vector<std::int32_t> ring = tetsWith(a, b);
+        std::vector<std::int32_t> apexCount;  // each ring vertex must appear in exactly two ring tets
+        for (auto t : ring) {
+            if (m_.labels[std::size_t(t)] != label) return {};
+            for (auto v : m_.tets[std::size_t(t)])
+                if (v != a && v != b) apexCount.push_back(v);
+        }
+        std::sort(apexCount.begin(), apexCount.end());
+        for (std::size_t i = 0; i < apexCount.size();) {
+            std::size_t j = i;
+            while (j < apexCount.size() && apexCount[j] == apexCount[i]) ++j;
+            if (j - i != 2) return {};
+            i = j;
+        }
+        return ring;
+    }
+
+    /// 3-2 flip of an edge of t with exactly three tets around it, all in t's region.
+    bool flip32Around(std::int32_t t, SliverStats& st) {
+        const Tet e = m_.tets[std::size_t(t)];
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) {
+                const std::int32_t a = e[std::size_t(i)], b = e[std::size_t(j)];
+                const std::vector<std::int32_t> ring = interiorRing(a, b, m_.labels[std::size_t(t)]);
+                if (ring.size() != 3) continue;
+                std::vector<std::int32_t> r;
+                for (auto s : ring)
+                    for (auto v : m_.tets[std::size_t(s)])
+                        if (v != a && v != b && std::find(r.begin(), r.end(), v) == r.end()) r.push_back(v);
+                if (r.size() != 3) continue;
+                if (replaceIfBetter(ring, {{r[0], r[1], r[2], a}, {r[0], r[1], r[2], b}})) {
+                    ++st.flips32;
+                    return true;
+                }
+            }
+        return false;
+    }
+
+    /// Splits an edge of t that lies inside t's region (longest first) and smooths the new vertex.
+    bool splitAround(std::int32_t t, SliverStats& st) {
+        const Tet e = m_.tets[std::size_t(t)];
+        std::vector<std::pair<double, std::pair<std::int32_t, std::int32_t>>> edges;
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) {
+                const std::int32_t a = e[std::size_t(i)], b = e[std::size_t(j)];
+                edges.push_back({-(P(a) - P(b)).squaredNorm(), {std::min(a, b), std::max(a, b)}});
+            }
+        std::sort(edges.begin(), edges.end());
+        for (const auto& [negLen, ab] : edges) {
+            const auto [a, b] = ab;
+            const std::vector<std::int32_t> ring = interiorRing(a, b, m_.labels[std::size_t(t)]);
+            if (ring.empty()) continue;
+            const auto m = std::int32_t(m_.nodes.size());  // the new vertex (not yet added)
+            std::vector<Tet> fresh;
+            for (auto s : ring) {
+                Tet x = m_.tets[std::size_t(s)], y = x;
+                for (auto& v : x)
+                    if (v == a) v = m;
+                for (auto& v : y)
+                    if (v == b) v = m;
+                fresh.push_back(x);
+                fresh.push_back(y);
+            }
+            m_.nodes.push_back(0.5 * (P(a) + P(b)));
+            const auto [p, after] = bestPosition(fresh, m, m_.nodes.back());
+            if (!(after > minScore(ring) + 1e-9)) {
+                m_.nodes.pop_back();
+                continue;
+            }
+            m_.nodes.back() = p;
+            commitNewVertex(ring, fresh, m_.labels[std::size_t(t)]);
+            ++st.splits;
+            return true;
+        }
+        return false;
+    }
+
+    /// Adds vertex m at p (already in nodes) with the tets `fresh` in place of `old`.
+    void commitNewVertex(const std::vector<std::int32_t>& old, const std::vector<Tet>& fresh, Label label) {
+        star_.emplace_back();
+        fixed_.push_back(0);
+        for (auto s : old) kill(s);
+        for (const Tet& x : fresh) add(x, label);
+    }
+
+    /// Splits a face of t shared with a tet of the same label at a new vertex, which is then
+    /// smoothed (it can leave the face: its star is the six new tets).
+    bool splitFaceAround(std::int32_t t, SliverStats& st) {
+        const Tet e = m_.tets[std::size_t(t)];
+        const Label label = m_.labels[std::size_t(t)];
+        for (int k = 0; k < 4; ++k) {
+            std::int32_t f[3], n = 0;
+            for (int j = 0; j < 4; ++j)
+                if (j != k) f[n++] = e[std::size_t(j)];
+            std::int32_t other = -1;
+            for (auto s : star_[std::size_t(f[0])]) {
+                if (s == t) continue;
+                const Tet& g = m_.tets[std::size_t(s)];
+                if (std::find(g.begin(), g.end(), f[1]) != g.end() && std::find(g.begin(), g.end(), f[2]) != g.end()) {
+                    other = s;
+                    break;
+                }
+            }
+            if (other < 0 || m_.labels[std::size_t(other)] != label) continue;
+            const auto m = std::int32_t(m_.nodes.size());
+            std::vector<Tet> fresh;
+            for (auto s : {t, other}) {
+                const Tet g = m_.tets[std::size_t(s)];
+                for (int i = 0; i < 4; ++i) {  // replace each face vertex by m in turn: orientation kept
+                    if (std::find(f, f + 3, g[std::size_t(i)]) == f + 3) continue;
+                    Tet x = g;
+                    x[std::size_t(i)] = m;
+                    fresh.push_back(x);
+                }
+            }
+            m_.nodes.push_back((P(f[0]) + P(f[1]) + P(f[2])) / 3.0);
+            const auto [p, after] = bestPosition(fresh, m, m_.nodes.back());
+            if (!(after > std::min(tetScore(t), tetScore(other)) + 1e-9)) {
+                m_.nodes.pop_back();
+                continue;
+            }
+            m_.nodes.back() = p;
+            commitNewVertex({t, other}, fresh, label);
+            ++st.faceSplits;
+            return true;
+        }
+        return false;
+    }
+
+    TetMesh& m_;
+    double target_;
+    std::vector<char> alive_, fixed_;
+    std::vector<std::vector<std::int32_t>> star_;
+};
+
+/// Smallest dihedral angle of the mesh and the number of tets below the target.
+std::pair<double, std::size_t> worstAndBad(const TetMesh& mesh, double targetDeg) {
+    double worst = std::numeric_limits<double>::infinity();
+    std::size_t bad = 0;
+    for (const Tet& e : mesh.tets) {
+        const double deg = scoreToDeg(score(mesh.nodes[std::size_t(e[0])], mesh.nodes[std::size_t(e[1])],
+                                            mesh.nodes[std::size_t(e[2])], mesh.nodes[std::size_t(e[3])]));
+        worst = std::min(worst, deg);
+        if (deg < targetDeg) ++bad;
+    }
+    return {mesh.tets.empty() ? 0.0 : worst, bad};
+}
+
+}  // namespace
+
+void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* stats) {
+    const auto start = std::chrono::steady_clock::now();
+    SliverStats st;
+    std::tie(st.minDihedralBeforeDeg, st.badBefore) = worstAndBad(mesh, options.targetMinDihedralDeg);
+    if (st.badBefore > 0) {
+        SliverImprover imp(mesh, options);
+        std::vector<std::int32_t> bad = imp.badTets();
+        for (int pass = 0; pass < options.maxPasses && !bad.empty(); ++pass) {
+            ++st.passes;
+            bool changed = false;
+            for (auto t : bad) changed |= imp.improve(t, st);
+            bad = imp.badTets();
+            if (!changed) break;
+        }
+        imp.compact();
+    }
+    std::tie(st.minDihedralAfterDeg, st.badAfter) = worstAndBad(mesh, options.targetMinDihedralDeg);
+    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (stats) *stats = st;
+}
+
+}  // namespace jawmesh
