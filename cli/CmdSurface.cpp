@@ -88,7 +88,7 @@ void addSurfaceCommand(CLI::App& app, GlobalOptions& global) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--near-teeth", opt->simplify.boneNearTeethMm, "Bone within this distance of a tooth or PDL is near, mm (default 2)")
         ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--min-angle", opt->simplify.minAngleDeg, "Smallest angle a collapse may create, degrees (default 20)")
+    cmd->add_option("--min-angle", opt->simplify.minAngleDeg, "Smallest angle a collapse may create, degrees (default 15)")
         ->check(CLI::Range(0.0, 59.0));
     cmd->add_flag("!--no-simplify", opt->simplifyOn, "Write the raw extraction");
     cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");

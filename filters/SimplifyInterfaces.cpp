@@ -3,6 +3,7 @@
 #include "filters/NearTeeth.h"
 
 #include "filters/SelfIntersections.h"
+#include "filters/SplitCorners.h"
 #include "filters/ShellSeeds.h"
 #include "filters/TriangleGeometry.h"
 #include "io/Error.h"
@@ -766,7 +767,8 @@ nlohmann::json toJson(const SimplifyStats& s) {
             {"min_angle_histogram",
              {{"bins_deg", {0, 5, 10, 15, 20, 30, 40, 60}}, {"triangles", s.minAngleHistogram}}},
             {"seconds", s.seconds},
-            {"exhaustive_rerun", s.exhaustiveRerun}};
+            {"exhaustive_rerun", s.exhaustiveRerun},
+            {"corner_splits", s.cornerSplits}};
 }
 
 std::string interfaceKind(Label a, Label b) {
@@ -971,11 +973,13 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     if (!check.pairs.empty())
         throw Error("simplification: the output has " + std::to_string(check.pairs.size()) +
                     " intersecting triangle pairs (the input surface must be intersection-free)");
+    const std::size_t cornerSplits = splitThreeTriangleCorners(out);  // forced slivers (SplitCorners.h)
     out.seeds = seedsInsideShells(out);  // grid seeds may have left a thin region (ShellSeeds.h)
     SimplifyStats local;
     SimplifyStats& s = stats ? *stats : local;
     s = SimplifyStats{};
     s.exhaustiveRerun = rerun;
+    s.cornerSplits = cornerSplits;
 
     s.inputTriangles = input.surface.triangles.size();
     s.outputTriangles = out.surface.triangles.size();

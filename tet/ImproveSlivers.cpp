@@ -35,6 +35,22 @@ double score(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 
 double scoreToDeg(double s) { return s <= kInvalid ? 0.0 : std::acos(std::clamp(-s, -1.0, 1.0)) * 180.0 / M_PI; }
 
+/// What a local operation optimises over the tets it changes: first the worst score, then the
+/// total shortfall below the target (so a bad tet next to a worse one that no operation can fix
+/// is still improved).
+struct Objective {
+    double worst = std::numeric_limits<double>::infinity();
+    double deficit = 0;
+    void add(double s, double target) {
+        worst = std::min(worst, s);
+        deficit += std::max(0.0, target - s);
+    }
+    bool betterThan(const Objective& o) const {
+        if (worst > o.worst + 1e-9) return true;
+        return worst >= o.worst - 1e-12 && deficit < o.deficit - 1e-9;
+    }
+};
+
 double signedVolume6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).dot((c - a).cross(d - a)); }
 
 class SliverImprover {
@@ -84,7 +100,7 @@ public:
                 ++st.smoothed;
                 return true;
             }
-        if (flip23Around(t, st) || flip32Around(t, st)) return true;
+        if (flip23Around(t, st) || removeEdgeAround(t, st)) return true;
         return splitAround(t, st) || splitFaceAround(t, st);
     }
 
@@ -102,28 +118,28 @@ public:
 private:
     const Vec3& P(std::int32_t v) const { return m_.nodes[std::size_t(v)]; }
 
-    double minScore(const std::vector<std::int32_t>& tets) const {
-        double s = std::numeric_limits<double>::infinity();
-        for (auto t : tets) s = std::min(s, tetScore(t));
-        return s;
+    Objective objectiveOf(const std::vector<std::int32_t>& tets) const {
+        Objective o;
+        for (auto t : tets) o.add(tetScore(t), target_);
+        return o;
     }
 
-    /// Smallest score of the tets `tets` (by vertices) with vertex v placed at p.
-    double scoreWith(const std::vector<Tet>& tets, std::int32_t v, const Vec3& p) const {
-        double s = std::numeric_limits<double>::infinity();
+    /// The objective of the tets `tets` (by vertices) with vertex v placed at p.
+    Objective scoreWith(const std::vector<Tet>& tets, std::int32_t v, const Vec3& p) const {
+        Objective o;
         for (const Tet& e : tets) {
             const Vec3* q[4];
             for (int k = 0; k < 4; ++k) q[k] = e[std::size_t(k)] == v ? &p : &m_.nodes[std::size_t(e[std::size_t(k)])];
-            s = std::min(s, score(*q[0], *q[1], *q[2], *q[3]));
-            if (s <= kInvalid) break;
+            o.add(score(*q[0], *q[1], *q[2], *q[3]), target_);
+            if (o.worst <= kInvalid) break;
         }
-        return s;
+        return o;
     }
 
-    /// Pattern search for the position of v maximising the smallest score of `tets`; returns the
-    /// best position and its score (start position and score if nothing better).
-    std::pair<Vec3, double> bestPosition(const std::vector<Tet>& tets, std::int32_t v, Vec3 start) const {
-        double best = scoreWith(tets, v, start);
+    /// Pattern search for the position of v with the best objective over `tets`; returns that
+    /// position and objective (the start's if nothing is better).
+    std::pair<Vec3, Objective> bestPosition(const std::vector<Tet>& tets, std::int32_t v, Vec3 start) const {
+        Objective best = scoreWith(tets, v, start);
         double shortest = std::numeric_limits<double>::infinity();
         for (const Tet& e : tets)
             for (auto w : e)
@@ -135,17 +151,17 @@ private:
         double h = 0.25 * shortest;
         Vec3 p = start;
         for (int iter = 0; iter < 60 && h > 1e-4 * shortest; ++iter) {
-            double stepBest = best;
+            Objective stepBest = best;
             Vec3 stepP = p;
             for (const auto& d : dirs) {
                 const Vec3 q = p + h * Vec3(d[0], d[1], d[2]).normalized();
-                const double s = scoreWith(tets, v, q);
-                if (s > stepBest) {
+                const Objective s = scoreWith(tets, v, q);
+                if (s.betterThan(stepBest)) {
                     stepBest = s;
                     stepP = q;
                 }
             }
-            if (stepBest > best) {
+            if (stepBest.betterThan(best)) {
                 best = stepBest;
                 p = stepP;
             } else {
@@ -158,9 +174,9 @@ private:
     bool smooth(std::int32_t v) {
         std::vector<Tet> tets;
         for (auto t : star_[std::size_t(v)]) tets.push_back(m_.tets[std::size_t(t)]);
-        const double before = scoreWith(tets, v, P(v));
+        const Objective before = scoreWith(tets, v, P(v));
         const auto [p, after] = bestPosition(tets, v, P(v));
-        if (!(after > before + 1e-9)) return false;
+        if (!after.betterThan(before)) return false;
         m_.nodes[std::size_t(v)] = p;
         return true;
     }
@@ -198,7 +214,7 @@ private:
             const Tet& e = m_.tets[std::size_t(t)];
             volOld += signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
         }
-        double sNew = std::numeric_limits<double>::infinity();
+        Objective sNew;
         for (Tet& e : fresh) {
             double v = signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
             if (v < 0) {
@@ -206,9 +222,9 @@ private:
                 v = -v;
             }
             volNew += v;
-            sNew = std::min(sNew, score(P(e[0]), P(e[1]), P(e[2]), P(e[3])));
+            sNew.add(score(P(e[0]), P(e[1]), P(e[2]), P(e[3])), target_);
         }
-        if (!(sNew > minScore(old) + 1e-9)) return false;
+        if (!sNew.betterThan(objectiveOf(old))) return false;
         if (std::abs(volNew - volOld) > 1e-9 * volOld) return false;  // not a re-triangulation of the same volume
         const Label label = m_.labels[std::size_t(old[0])];
         for (auto t : old) kill(t);
@@ -266,25 +282,89 @@ private:
         return ring;
     }
 
-    /// 3-2 flip of an edge of t with exactly three tets around it, all in t's region.
-    bool flip32Around(std::int32_t t, SliverStats& st) {
+    /// Edge removal (Shewchuk 2002): an edge of t inside t's region with 3..7 tets around it is
+    /// replaced by the best triangulation of its ring polygon joined to the edge's two ends (the
+    /// 3-tet case is the 3-2 flip).
+    bool removeEdgeAround(std::int32_t t, SliverStats& st) {
         const Tet e = m_.tets[std::size_t(t)];
         for (int i = 0; i < 4; ++i)
             for (int j = i + 1; j < 4; ++j) {
-                const std::int32_t a = e[std::size_t(i)], b = e[std::size_t(j)];
+                std::int32_t a = e[std::size_t(i)], b = e[std::size_t(j)];
                 const std::vector<std::int32_t> ring = interiorRing(a, b, m_.labels[std::size_t(t)]);
-                if (ring.size() != 3) continue;
-                std::vector<std::int32_t> r;
-                for (auto s : ring)
-                    for (auto v : m_.tets[std::size_t(s)])
-                        if (v != a && v != b && std::find(r.begin(), r.end(), v) == r.end()) r.push_back(v);
-                if (r.size() != 3) continue;
-                if (replaceIfBetter(ring, {{r[0], r[1], r[2], a}, {r[0], r[1], r[2], b}})) {
-                    ++st.flips32;
+                if (ring.size() < 3 || ring.size() > 7) continue;
+                std::vector<std::int32_t> r = ringPolygon(a, b, ring);
+                if (r.size() != ring.size()) continue;
+                const std::vector<Tet> fresh = bestRingTriangulation(a, b, r);
+                if (fresh.empty()) continue;
+                if (replaceIfBetter(ring, fresh)) {
+                    ++(ring.size() == 3 ? st.flips32 : st.edgeRemovals);
                     return true;
                 }
             }
         return false;
+    }
+
+    /// The ring vertices of edge (a, b) in cyclic order, oriented so (a, b, r[k], r[k+1]) is positive.
+    std::vector<std::int32_t> ringPolygon(std::int32_t a, std::int32_t b, const std::vector<std::int32_t>& ring) const {
+        std::vector<std::pair<std::int32_t, std::int32_t>> links;
+        for (auto s : ring) {
+            std::int32_t x[2], n = 0;
+            for (auto v : m_.tets[std::size_t(s)])
+                if (v != a && v != b) x[n++] = v;
+            links.emplace_back(x[0], x[1]);
+        }
+        std::vector<std::int32_t> r = {links[0].first, links[0].second};
+        std::vector<char> used(links.size(), 0);
+        used[0] = 1;
+        while (r.size() < links.size()) {
+            bool found = false;
+            for (std::size_t k = 0; k < links.size() && !found; ++k) {
+                if (used[k]) continue;
+                if (links[k].first == r.back()) r.push_back(links[k].second), found = true;
+                else if (links[k].second == r.back()) r.push_back(links[k].first), found = true;
+                if (found) used[k] = 1;
+            }
+            if (!found) return {};
+        }
+        if (signedVolume6(P(a), P(b), P(r[0]), P(r[1])) < 0) std::reverse(r.begin(), r.end());
+        return r;
+    }
+
+    /// Triangulation of the ring polygon maximising the smallest score of the tets it makes with
+    /// a (below) and b (above); empty when some triangle would give an inverted tet.
+    std::vector<Tet> bestRingTriangulation(std::int32_t a, std::int32_t b, const std::vector<std::int32_t>& r) const {
+        const int n = int(r.size());
+        constexpr double kNone = -std::numeric_limits<double>::infinity();
+        std::vector<double> q(std::size_t(n * n), kNone);
+        std::vector<int> split(std::size_t(n * n), -1);
+        const auto at = [n](int i, int j) { return std::size_t(i * n + j); };
+        for (int i = 0; i + 1 < n; ++i) q[at(i, i + 1)] = std::numeric_limits<double>::infinity();
+        for (int len = 2; len < n; ++len)
+            for (int i = 0; i + len < n; ++i) {
+                const int j = i + len;
+                for (int k = i + 1; k < j; ++k) {
+                    const double s = std::min({q[at(i, k)], q[at(k, j)], score(P(r[std::size_t(i)]), P(r[std::size_t(k)]), P(r[std::size_t(j)]), P(b)),
+                                               score(P(r[std::size_t(i)]), P(r[std::size_t(j)]), P(r[std::size_t(k)]), P(a))});
+                    if (s > q[at(i, j)]) {
+                        q[at(i, j)] = s;
+                        split[at(i, j)] = k;
+                    }
+                }
+            }
+        if (!(q[at(0, n - 1)] > kInvalid)) return {};
+        std::vector<Tet> out;
+        std::vector<std::pair<int, int>> todo = {{0, n - 1}};
+        while (!todo.empty()) {
+            const auto [i, j] = todo.back();
+            todo.pop_back();
+            if (j - i < 2) continue;
+            const int k = split[at(i, j)];
+            out.push_back({r[std::size_t(i)], r[std::size_t(k)], r[std::size_t(j)], b});
+            out.push_back({r[std::size_t(i)], r[std::size_t(j)], r[std::size_t(k)], a});
+            todo.push_back({i, k});
+            todo.push_back({k, j});
+        }
+        return out;
     }
 
     /// Splits an edge of t that lies inside t's region (longest first) and smooths the new vertex.
@@ -314,7 +394,7 @@ private:
             }
             m_.nodes.push_back(0.5 * (P(a) + P(b)));
             const auto [p, after] = bestPosition(fresh, m, m_.nodes.back());
-            if (!(after > minScore(ring) + 1e-9)) {
+            if (!after.betterThan(objectiveOf(ring))) {
                 m_.nodes.pop_back();
                 continue;
             }
@@ -366,7 +446,7 @@ private:
             }
             m_.nodes.push_back((P(f[0]) + P(f[1]) + P(f[2])) / 3.0);
             const auto [p, after] = bestPosition(fresh, m, m_.nodes.back());
-            if (!(after > std::min(tetScore(t), tetScore(other)) + 1e-9)) {
+            if (!after.betterThan(objectiveOf({t, other}))) {
                 m_.nodes.pop_back();
                 continue;
             }

@@ -6,9 +6,10 @@
 // the smallest dihedral angle among the tets it changes (hill climbing, Klingner & Shewchuk 2007):
 //  - smoothing: a vertex inside one region (on no interface) moves to where its star's smallest
 //    dihedral angle is largest (pattern search; no star tet may invert);
-//  - flips inside one region: 2-3 (a face whose two tets have the same label) and 3-2 (an edge
-//    whose three tets have the same label and whose ring is closed), checked by exact volume
-//    conservation and positive orientation;
+//  - flips inside one region: 2-3 (a face whose two tets have the same label) and edge removal
+//    (an edge whose 3..7 tets have the same label and whose ring is closed: the best triangulation
+//    of the ring, Shewchuk 2002; 3 tets = the 3-2 flip), checked by positive orientation and
+//    volume conservation;
 //  - splits: an edge or a face inside one region gets a new vertex, which is then smoothed.
 // Interface faces, interface vertices and labels never change, so conformity and every region's
 // geometry are kept. Serial and deterministic (tets visited by quality, ties by index).
@@ -33,6 +34,7 @@ struct SliverStats {
     std::size_t smoothed = 0;   ///< accepted vertex moves
     std::size_t flips23 = 0;
     std::size_t flips32 = 0;
+    std::size_t edgeRemovals = 0;  ///< edges with 4..7 tets around them removed
     std::size_t splits = 0;     ///< edges split (one new node each)
     std::size_t faceSplits = 0; ///< faces split (one new node each)
     int passes = 0;
