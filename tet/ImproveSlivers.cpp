@@ -171,6 +171,19 @@ private:
         return {p, best};
     }
 
+    /// bestPosition for a new vertex m from two starts: where it was put (on the split edge or
+    /// face, where a flat sliver keeps its new tets flat) and the centroid of the replaced tets
+    /// (off that plane).
+    std::pair<Vec3, Objective> bestOfStarts(const std::vector<Tet>& fresh, std::int32_t m, const std::vector<std::int32_t>& old) const {
+        Vec3 centroid = Vec3::Zero();
+        for (auto t : old)
+            for (auto v : m_.tets[std::size_t(t)]) centroid += P(v);
+        centroid /= double(4 * old.size());
+        auto first = bestPosition(fresh, m, P(m));
+        auto second = bestPosition(fresh, m, centroid);
+        return second.second.betterThan(first.second) ? second : first;
+    }
+
     bool smooth(std::int32_t v) {
         std::vector<Tet> tets;
         for (auto t : star_[std::size_t(v)]) tets.push_back(m_.tets[std::size_t(t)]);
@@ -393,7 +406,7 @@ private:
                 fresh.push_back(y);
             }
             m_.nodes.push_back(0.5 * (P(a) + P(b)));
-            const auto [p, after] = bestPosition(fresh, m, m_.nodes.back());
+            const auto [p, after] = bestOfStarts(fresh, m, ring);
             if (!after.betterThan(objectiveOf(ring))) {
                 m_.nodes.pop_back();
                 continue;
@@ -445,7 +458,7 @@ private:
                 }
             }
             m_.nodes.push_back((P(f[0]) + P(f[1]) + P(f[2])) / 3.0);
-            const auto [p, after] = bestPosition(fresh, m, m_.nodes.back());
+            const auto [p, after] = bestOfStarts(fresh, m, {t, other});
             if (!after.betterThan(objectiveOf({t, other}))) {
                 m_.nodes.pop_back();
                 continue;
