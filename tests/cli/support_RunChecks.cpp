@@ -1,0 +1,143 @@
+#include "support_RunChecks.h"
+
+#include "filters/TriangleGeometry.h"
+#include "io/GmshReader.h"
+#include "io/Labels.h"
+#include "io/MeshIO.h"
+#include "tet/RegionSurfaces.h"
+#include "tet/TetFaceAdjacency.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace jawmesh::test {
+
+SurfaceDistance::SurfaceDistance(const SurfaceMesh& surface, double cellMm) : s_(surface), h_(cellMm) {
+    BBox box;
+    for (const Vec3& v : s_.vertices) box.extend(v);
+    origin_ = box.min;
+    for (int k = 0; k < 3; ++k) n_[k] = std::max(1, int(std::ceil((box.max[k] - box.min[k]) / h_)) + 1);
+    cells_.resize(std::size_t(n_[0]) * std::size_t(n_[1]) * std::size_t(n_[2]));
+    for (std::size_t t = 0; t < s_.triangles.size(); ++t) {
+        BBox b;
+        for (auto v : s_.triangles[t]) b.extend(s_.vertices[std::size_t(v)]);
+        int lo[3], hi[3];
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::clamp(int((b.min[k] - origin_[k]) / h_), 0, n_[k] - 1);
+            hi[k] = std::clamp(int((b.max[k] - origin_[k]) / h_), 0, n_[k] - 1);
+        }
+        for (int z = lo[2]; z <= hi[2]; ++z)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int x = lo[0]; x <= hi[0]; ++x)
+                    cells_[(std::size_t(z) * std::size_t(n_[1]) + std::size_t(y)) * std::size_t(n_[0]) + std::size_t(x)].push_back(std::int32_t(t));
+    }
+}
+
+double SurfaceDistance::operator()(const Vec3& p) const {
+    int c[3];
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(int((p[k] - origin_[k]) / h_), 0, n_[k] - 1);
+    double best2 = std::numeric_limits<double>::infinity();
+    const int maxRing = std::max({n_[0], n_[1], n_[2]});
+    for (int r = 0; r <= maxRing; ++r) {
+        for (int z = c[2] - r; z <= c[2] + r; ++z)
+            for (int y = c[1] - r; y <= c[1] + r; ++y)
+                for (int x = c[0] - r; x <= c[0] + r; ++x) {
+                    if (std::max({std::abs(x - c[0]), std::abs(y - c[1]), std::abs(z - c[2])}) != r) continue;  // shell only
+                    if (x < 0 || y < 0 || z < 0 || x >= n_[0] || y >= n_[1] || z >= n_[2]) continue;
+                    for (auto t : cells_[(std::size_t(z) * std::size_t(n_[1]) + std::size_t(y)) * std::size_t(n_[0]) + std::size_t(x)]) {
+                        const Tri& f = s_.triangles[std::size_t(t)];
+                        best2 = std::min(best2, squaredDistanceToTriangle(p, s_.vertices[std::size_t(f[0])], s_.vertices[std::size_t(f[1])],
+                                                                          s_.vertices[std::size_t(f[2])]));
+                    }
+                }
+        // every triangle not seen yet lies in cells at least r cells away from p's cell
+        const double reach = double(r) * h_;
+        if (best2 <= reach * reach) break;
+    }
+    return std::sqrt(best2);
+}
+
+double directedHausdorff(const SurfaceMesh& from, const SurfaceDistance& to) {
+    double worst = 0;
+    for (const Vec3& v : from.vertices) worst = std::max(worst, to(v));
+    for (const Tri& f : from.triangles)
+        worst = std::max(worst, to((from.vertices[std::size_t(f[0])] + from.vertices[std::size_t(f[1])] + from.vertices[std::size_t(f[2])]) / 3.0));
+    return worst;
+}
+
+namespace {
+
+/// The faces of `mesh` between labels a and b, as a surface.
+SurfaceMesh interfaceBetween(const TetMesh& mesh, const TetFaceAdjacency& adj, Label a, Label b) {
+    SurfaceMesh s;
+    s.vertices = mesh.nodes;  // unused nodes are harmless for distances from triangles
+    for (std::size_t g = 0; g < adj.groupCount(); ++g) {
+        if (adj.groupSize(g) != 2) continue;
+        const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
+        const auto& f1 = adj.faces[std::size_t(adj.groupStart[g]) + 1];
+        const Label l0 = mesh.labels[std::size_t(f0.tet)], l1 = mesh.labels[std::size_t(f1.tet)];
+        if ((l0 == a && l1 == b) || (l0 == b && l1 == a)) s.triangles.push_back({f0.key[0], f0.key[1], f0.key[2]});
+    }
+    return s;
+}
+
+SurfaceMesh compact(const SurfaceMesh& s) {
+    SurfaceMesh out;
+    std::vector<std::int32_t> map(s.vertices.size(), -1);
+    for (Tri f : s.triangles) {
+        for (auto& v : f) {
+            if (map[std::size_t(v)] < 0) {
+                map[std::size_t(v)] = std::int32_t(out.vertices.size());
+                out.vertices.push_back(s.vertices[std::size_t(v)]);
+            }
+            v = map[std::size_t(v)];
+        }
+        out.triangles.push_back(f);
+    }
+    return out;
+}
+
+double twoSided(const SurfaceMesh& a, const SurfaceMesh& b, double cellMm) {
+    const SurfaceDistance toA(a, cellMm), toB(b, cellMm);
+    return std::max(directedHausdorff(a, toB), directedHausdorff(b, toA));
+}
+
+}  // namespace
+
+RunFigures measureRun(const std::string& jawDir, const std::string& inputJawDir, const std::string& jaw,
+                      const std::vector<int>& teethUnn) {
+    RunFigures r;
+    const TetMesh mesh = readGmsh(jawDir + "/volumetric_meshes/" + jaw + ".msh");
+    r.validation = validateTetMesh(mesh, teethUnn);
+    r.quality = measureQuality(mesh, 10.0);
+    const TetFaceAdjacency adj = tetFaceAdjacency(mesh);
+    const std::map<Label, SurfaceMesh> surfaces = regionSurfaces(mesh);
+    const Label bone = jaw == "maxilla" ? kMaxillaBoneLabel : kMandibleBoneLabel;
+    for (int unn : teethUnn) {
+        const SurfaceMesh toothSide = compact(interfaceBetween(mesh, adj, toothLabel(unn), pdlLabel(unn)));
+        const SurfaceMesh boneSide = compact(interfaceBetween(mesh, adj, pdlLabel(unn), bone));
+        if (!toothSide.triangles.empty() && !boneSide.triangles.empty()) {
+            const SurfaceDistance toBone(boneSide, 0.5);
+            double sum = 0, area = 0;
+            for (const Tri& f : toothSide.triangles) {
+                const Vec3& a = toothSide.vertices[std::size_t(f[0])];
+                const Vec3& b = toothSide.vertices[std::size_t(f[1])];
+                const Vec3& c = toothSide.vertices[std::size_t(f[2])];
+                const double w = 0.5 * (b - a).cross(c - a).norm();
+                sum += w * toBone((a + b + c) / 3.0);
+                area += w;
+            }
+            r.pdlThicknessMeanMm[unn] = area > 0 ? sum / area : 0.0;
+        }
+        const auto it = surfaces.find(toothLabel(unn));
+        if (it != surfaces.end())
+            r.toothHausdorffMm[unn] =
+                twoSided(it->second, readSurface(inputJawDir + "/teeth/tooth_" + std::to_string(unn) + ".stl"), 0.5);
+    }
+    const auto it = surfaces.find(bone);
+    if (it != surfaces.end()) r.boneHausdorffMm = twoSided(it->second, readSurface(inputJawDir + "/bone/" + jaw + ".stl"), 1.0);
+    return r;
+}
+
+}  // namespace jawmesh::test

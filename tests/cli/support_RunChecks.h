@@ -1,0 +1,48 @@
+// Figures of a finished `jawmesh run` jaw folder, computed here independently of the pipeline's
+// own report: what issue #5 asks of every run (conformity, quality, size, PDL thickness, distance
+// of every output region to its input surface).
+#pragma once
+
+#include "io/SurfaceMesh.h"
+#include "io/TetMesh.h"
+#include "tet/ElementQuality.h"
+#include "tet/ValidateTetMesh.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace jawmesh::test {
+
+/// Exact distance from points to a triangle surface, accelerated by a uniform grid of triangle
+/// boxes (rings searched outward until no nearer triangle can exist).
+class SurfaceDistance {
+public:
+    SurfaceDistance(const SurfaceMesh& surface, double cellMm);
+    double operator()(const Vec3& p) const;
+
+private:
+    const SurfaceMesh& s_;
+    double h_;
+    Vec3 origin_;
+    int n_[3];
+    std::vector<std::vector<std::int32_t>> cells_;
+};
+
+/// Largest distance of the vertices and triangle centroids of `from` to `to`.
+double directedHausdorff(const SurfaceMesh& from, const SurfaceDistance& to);
+
+struct RunFigures {
+    ValidationReport validation;
+    QualityStats quality;
+    std::map<int, double> pdlThicknessMeanMm;  ///< per UNN: area-weighted mean over the tooth-side interface
+    std::map<int, double> toothHausdorffMm;    ///< per UNN: two-sided, output tooth surface vs input
+    double boneHausdorffMm = 0;                ///< two-sided, output bone surface vs input
+};
+
+/// Reads <jawDir>/volumetric_meshes/<jaw>.msh and the input surfaces in <inputJawDir>
+/// (bone/<jaw>.stl, teeth/tooth_<UNN>.stl) and measures everything above.
+RunFigures measureRun(const std::string& jawDir, const std::string& inputJawDir, const std::string& jaw,
+                      const std::vector<int>& teethUnn);
+
+}  // namespace jawmesh::test
