@@ -245,24 +245,30 @@ private:
         return true;
     }
 
+    /// Face k of t (the three nodes other than t[k]) and the tet on its other side when that tet
+    /// has t's label (-1 otherwise: an interface, the outside).
+    std::int32_t sameRegionNeighbour(std::int32_t t, int k, std::int32_t f[3]) const {
+        const Tet& e = m_.tets[std::size_t(t)];
+        int n = 0;
+        for (int j = 0; j < 4; ++j)
+            if (j != k) f[n++] = e[std::size_t(j)];
+        for (auto s : star_[std::size_t(f[0])]) {
+            if (s == t) continue;
+            const Tet& g = m_.tets[std::size_t(s)];
+            if (std::find(g.begin(), g.end(), f[1]) != g.end() && std::find(g.begin(), g.end(), f[2]) != g.end())
+                return m_.labels[std::size_t(s)] == m_.labels[std::size_t(t)] ? s : -1;
+        }
+        return -1;
+    }
+
     /// 2-3 flip of a face of t whose other tet has the same label.
     bool flip23Around(std::int32_t t, SliverStats& st) {
         const Tet e = m_.tets[std::size_t(t)];
         for (int k = 0; k < 4; ++k) {
             const std::int32_t d = e[std::size_t(k)];
-            std::int32_t f[3], n = 0;
-            for (int j = 0; j < 4; ++j)
-                if (j != k) f[n++] = e[std::size_t(j)];
-            std::int32_t other = -1;
-            for (auto s : star_[std::size_t(f[0])]) {
-                if (s == t) continue;
-                const Tet& g = m_.tets[std::size_t(s)];
-                if (std::find(g.begin(), g.end(), f[1]) != g.end() && std::find(g.begin(), g.end(), f[2]) != g.end()) {
-                    other = s;
-                    break;
-                }
-            }
-            if (other < 0 || m_.labels[std::size_t(other)] != m_.labels[std::size_t(t)]) continue;
+            std::int32_t f[3];
+            const std::int32_t other = sameRegionNeighbour(t, k, f);
+            if (other < 0) continue;
             std::int32_t apex = -1;
             for (auto v : m_.tets[std::size_t(other)])
                 if (v != f[0] && v != f[1] && v != f[2]) apex = v;
@@ -430,22 +436,11 @@ private:
     /// Splits a face of t shared with a tet of the same label at a new vertex, which is then
     /// smoothed (it can leave the face: its star is the six new tets).
     bool splitFaceAround(std::int32_t t, SliverStats& st) {
-        const Tet e = m_.tets[std::size_t(t)];
         const Label label = m_.labels[std::size_t(t)];
         for (int k = 0; k < 4; ++k) {
-            std::int32_t f[3], n = 0;
-            for (int j = 0; j < 4; ++j)
-                if (j != k) f[n++] = e[std::size_t(j)];
-            std::int32_t other = -1;
-            for (auto s : star_[std::size_t(f[0])]) {
-                if (s == t) continue;
-                const Tet& g = m_.tets[std::size_t(s)];
-                if (std::find(g.begin(), g.end(), f[1]) != g.end() && std::find(g.begin(), g.end(), f[2]) != g.end()) {
-                    other = s;
-                    break;
-                }
-            }
-            if (other < 0 || m_.labels[std::size_t(other)] != label) continue;
+            std::int32_t f[3];
+            const std::int32_t other = sameRegionNeighbour(t, k, f);
+            if (other < 0) continue;
             const auto m = std::int32_t(m_.nodes.size());
             std::vector<Tet> fresh;
             for (auto s : {t, other}) {
