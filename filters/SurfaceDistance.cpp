@@ -144,21 +144,12 @@ DistanceSamples sampleDistances(const SurfaceMesh& from, const TriangleBvh& to, 
     return s;
 }
 
-double maxDistanceOnTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const TriangleBvh& to, double knownMm,
-                             double toleranceMm, Vec3* where) {
-    const Corner ka = measure(to, a, -1), kb = measure(to, b, ka.closest), kc = measure(to, c, kb.closest);
-    double best = knownMm;
-    refineMax(ka, kb, kc, to, toleranceMm, best, where);
-    return best;
-}
-
 std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const DistanceSamples& samples,
                                                 const std::vector<int>& groupOfTriangle, int groupCount,
                                                 const TriangleBvh& to, double toleranceMm, Progress& progress) {
     const std::size_t nt = from.triangles.size();
     std::vector<DistanceSummary> out(static_cast<std::size_t>(std::max(groupCount, 0)));
     std::vector<std::vector<double>> values(out.size()), weights(out.size());
-    std::vector<char> vertexUsed(from.vertices.size(), 0);
     for (std::size_t t = 0; t < nt; ++t) {
         const int g = groupOfTriangle[t];
         if (g < 0) continue;
@@ -166,34 +157,25 @@ std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const D
             values[static_cast<std::size_t>(g)].push_back(samples.distanceMm[static_cast<std::size_t>(i)]);
             weights[static_cast<std::size_t>(g)].push_back(samples.weightMm2[static_cast<std::size_t>(i)]);
         }
-        for (std::int32_t v : from.triangles[t]) vertexUsed[static_cast<std::size_t>(v)] = 1;
     }
     // The largest sample of each group (first in sample order) is the bar a triangle must beat to
     // be refined, and where the max is until one does.
-    std::vector<double> bar(out.size(), -1.0);
+    std::vector<double> barOf(out.size(), -1.0);
     std::vector<std::size_t> barSample(out.size(), 0);
     for (std::size_t t = 0; t < nt; ++t) {
         const int g = groupOfTriangle[t];
         if (g < 0) continue;
         for (std::int64_t i = samples.firstOfTriangle[t]; i < samples.firstOfTriangle[t + 1]; ++i)
-            if (samples.distanceMm[static_cast<std::size_t>(i)] > bar[static_cast<std::size_t>(g)]) {
-                bar[static_cast<std::size_t>(g)] = samples.distanceMm[static_cast<std::size_t>(i)];
+            if (samples.distanceMm[static_cast<std::size_t>(i)] > barOf[static_cast<std::size_t>(g)]) {
+                barOf[static_cast<std::size_t>(g)] = samples.distanceMm[static_cast<std::size_t>(i)];
                 barSample[static_cast<std::size_t>(g)] = static_cast<std::size_t>(i);
             }
     }
 
-    // Corner distances once per vertex (each vertex is shared by about six triangles).
-    std::vector<Corner> corner(from.vertices.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corner.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-        progress.checkCancelled();
-        std::int32_t hint = -1;
-        for (std::size_t v = r.begin(); v != r.end(); ++v)
-            if (vertexUsed[v]) {
-                corner[v] = measure(to, from.vertices[v], hint);
-                hint = corner[v].closest;
-            }
-    });
-
+    // Most triangles are settled by their own samples: every point of a sub-triangle is within its
+    // centroid-to-corner radius of the sample at that centroid (distance is 1-Lipschitz), so a
+    // triangle whose samples plus that radius stay below the bar cannot beat it. Only the others
+    // get corner queries and the branch and bound.
     std::vector<double> triangleMax(nt, 0.0);
     std::vector<Vec3> triangleWhere(nt, Vec3::Zero());
     std::atomic<std::size_t> done{0};
@@ -202,10 +184,23 @@ std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const D
         for (std::size_t t = r.begin(); t != r.end(); ++t) {
             const int g = groupOfTriangle[t];
             if (g < 0) continue;
+            const double bar = barOf[static_cast<std::size_t>(g)];
+            triangleMax[t] = bar;
             const Tri& tri = from.triangles[t];
-            double best = bar[static_cast<std::size_t>(g)];
-            refineMax(corner[static_cast<std::size_t>(tri[0])], corner[static_cast<std::size_t>(tri[1])],
-                      corner[static_cast<std::size_t>(tri[2])], to, toleranceMm, best, &triangleWhere[t]);
+            const Vec3& a = from.vertices[static_cast<std::size_t>(tri[0])];
+            const Vec3& b = from.vertices[static_cast<std::size_t>(tri[1])];
+            const Vec3& c = from.vertices[static_cast<std::size_t>(tri[2])];
+            const std::int64_t first = samples.firstOfTriangle[t], count = samples.firstOfTriangle[t + 1] - first;
+            const Vec3 centre = (a + b + c) / 3.0;
+            const double radius = std::sqrt(std::max({(a - centre).squaredNorm(), (b - centre).squaredNorm(), (c - centre).squaredNorm()})) /
+                                  std::sqrt(static_cast<double>(count));  // sub-triangles are the triangle scaled by 1/n
+            double worst = 0;
+            for (std::int64_t i = first; i < first + count; ++i) worst = std::max(worst, samples.distanceMm[static_cast<std::size_t>(i)]);
+            if (worst + radius <= bar + toleranceMm) continue;
+            const std::int32_t hint = samples.closestTriangle[static_cast<std::size_t>(first)];
+            const Corner ka = measure(to, a, hint), kb = measure(to, b, ka.closest), kc = measure(to, c, kb.closest);
+            double best = bar;
+            refineMax(ka, kb, kc, to, toleranceMm, best, &triangleWhere[t]);
             triangleMax[t] = best;  // == bar unless a point of this triangle beats it
         }
         progress.update(static_cast<double>(done += r.size()) / static_cast<double>(nt));

@@ -54,11 +54,4 @@ std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const D
                                                 const TriangleBvh& to, double toleranceMm,
                                                 Progress& progress = noProgress());
 
-/// Largest distance to `to` over the points of triangle (a, b, c), to within toleranceMm, given a
-/// value `knownMm` already attained elsewhere: returns max(knownMm, that maximum) (so a triangle that
-/// cannot beat knownMm + tolerance is not refined), and its location in *where when it beats knownMm.
-/// Cost: 0 queries when the corner bounds settle it, else a few per level of subdivision.
-double maxDistanceOnTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const TriangleBvh& to, double knownMm,
-                             double toleranceMm, Vec3* where = nullptr);
-
 }  // namespace jawmesh

@@ -58,6 +58,30 @@ Distribution summarizeWeighted(const std::vector<double>& values, const std::vec
     return d;
 }
 
+Distribution summarizeUnweighted(std::vector<double> values) {
+    Distribution d;
+    d.count = values.size();
+    if (values.empty()) return d;
+    double sum = 0;
+    for (double v : values) sum += v;  // input order, as in summarizeWeighted
+    d.totalWeight = static_cast<double>(values.size());
+    d.mean = sum / d.totalWeight;
+    // With unit weights the cumulative weight at sorted index i is i + 1: p_q sits at ceil(q n) - 1.
+    const auto at = [&](double q) {
+        const double target = q * d.totalWeight;
+        const std::size_t k = static_cast<std::size_t>(std::max(1.0, std::ceil(target))) - 1;
+        std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+        return values[k];
+    };
+    d.p05 = at(0.05);
+    d.median = at(0.5);
+    d.p95 = at(0.95);
+    const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+    d.min = *lo;
+    d.max = *hi;
+    return d;
+}
+
 std::vector<double> weightedHistogram(const std::vector<double>& values, const std::vector<double>& weights, double lo,
                                       double hi, int bins) {
     std::vector<double> h(static_cast<std::size_t>(std::max(bins, 1)), 0.0);

@@ -87,7 +87,7 @@ Json qualityJson(const TetMesh& mesh, const std::vector<TetShape>& shapes, const
     for (const Measure& m : kMeasures) {
         std::vector<double> all(shapes.size());
         for (std::size_t t = 0; t < shapes.size(); ++t) all[t] = m.value(shapes[t]);
-        quality["overall"][m.name] = toJson(summarizeWeighted(all, std::vector<double>(all.size(), 1.0)));
+        quality["overall"][m.name] = toJson(summarizeUnweighted(all));
         Json hist = {{"lo", m.histLo}, {"hi", m.histHi}, {"bins", o.histogramBins}, {"counts", Json::object()}};
         std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> byKind;
         for (auto& region : regions) {

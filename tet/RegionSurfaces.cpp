@@ -5,7 +5,7 @@
 #include "tet/TetFaceAdjacency.h"
 
 #include <filesystem>
-#include <unordered_map>
+#include <algorithm>
 
 namespace jawmesh {
 
@@ -35,6 +35,7 @@ std::map<Label, RegionBoundary> regionBoundaries(const TetMesh& mesh) {
         }
     }
     std::map<Label, RegionBoundary> out;
+    std::vector<std::int32_t> local(mesh.nodes.size(), -1);  // node -> surface vertex, reset per region
     for (auto& [label, tris] : faces) {
         out[label].otherSide = std::move(others[label]);
         SurfaceMesh& s = out[label].surface;
@@ -43,14 +44,15 @@ std::map<Label, RegionBoundary> regionBoundaries(const TetMesh& mesh) {
         for (const Tri& t : tris) used.insert(used.end(), t.begin(), t.end());
         std::sort(used.begin(), used.end());
         used.erase(std::unique(used.begin(), used.end()), used.end());
-        std::unordered_map<std::int32_t, std::int32_t> local;
-        local.reserve(used.size());
+        s.vertices.reserve(used.size());
         for (std::size_t i = 0; i < used.size(); ++i) {
-            local[used[i]] = static_cast<std::int32_t>(i);
+            local[static_cast<std::size_t>(used[i])] = static_cast<std::int32_t>(i);
             s.vertices.push_back(mesh.nodes[static_cast<std::size_t>(used[i])]);
         }
         s.triangles.reserve(tris.size());
-        for (const Tri& t : tris) s.triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
+        for (const Tri& t : tris)
+            s.triangles.push_back({local[static_cast<std::size_t>(t[0])], local[static_cast<std::size_t>(t[1])], local[static_cast<std::size_t>(t[2])]});
+        for (std::int32_t v : used) local[static_cast<std::size_t>(v)] = -1;
     }
     return out;
 }

@@ -162,4 +162,11 @@ TEST(WeightedDistribution, PercentilesFollowTheCumulativeWeight) {
     const auto h = weightedHistogram(v, w, 0, 10, 5);
     EXPECT_EQ(h, (std::vector<double>{1, 2, 7, 0, 0}));  // 5 falls in [4,6), 100 in the last bin with weight 0
     EXPECT_EQ(summarizeWeighted({}, {}).count, 0u);
+    // The unit-weight shortcut agrees with explicit unit weights, ties and all.
+    std::mt19937 rng(1);
+    std::vector<double> many;
+    for (int i = 0; i < 1001; ++i) many.push_back(std::floor(std::uniform_real_distribution<double>(0, 50)(rng)));
+    const Distribution a = summarizeWeighted(many, std::vector<double>(many.size(), 1.0)), b = summarizeUnweighted(many);
+    EXPECT_EQ(std::vector<double>({a.min, a.p05, a.median, a.p95, a.mean, a.max, a.totalWeight}),
+              std::vector<double>({b.min, b.p05, b.median, b.p95, b.mean, b.max, b.totalWeight}));
 }
