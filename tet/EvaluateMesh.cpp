@@ -1,5 +1,6 @@
 #include "tet/EvaluateMesh.h"
 
+#include "io/Error.h"
 #include "filters/PdlThickness.h"
 #include "filters/SurfaceDistance.h"
 #include "filters/WeightedDistribution.h"
@@ -173,6 +174,28 @@ Json aggregateParts(const Json& domains, const std::string& kind, const std::str
 
 bool againstPdlOrBone(Label other) {
     return other != kOutsideLabel && (labelKind(other) == LabelKind::Pdl || labelKind(other) == LabelKind::Bone);
+}
+
+/// A wrong --input (another patient, another jaw, metres) would make every nearest-triangle query
+/// crawl through the whole tree and report nonsense: refuse it when the boxes barely overlap.
+void requireInputOverlapsMesh(const TetMesh& mesh, const JawSurfaces& input) {
+    BBox meshBox, inputBox = boundingBox(input.bone);
+    for (const Vec3& p : mesh.nodes) meshBox.extend(p);
+    for (const auto& [unn, s] : input.teeth) inputBox.extend(boundingBox(s));
+    if (inputBox.empty()) return;
+    BBox common;
+    common.min = meshBox.min.cwiseMax(inputBox.min);
+    common.max = meshBox.max.cwiseMin(inputBox.max);
+    const auto volume = [](const BBox& b) { return b.empty() ? 0.0 : b.size().prod(); };
+    if (volume(common) < 0.5 * std::min(volume(meshBox), volume(inputBox))) {
+        char buf[400];
+        std::snprintf(buf, sizeof buf,
+                      "the input surfaces do not match the mesh (mesh box (%.1f %.1f %.1f)-(%.1f %.1f %.1f) mm, input box "
+                      "(%.1f %.1f %.1f)-(%.1f %.1f %.1f) mm overlap by less than half): wrong input folder?",
+                      meshBox.min.x(), meshBox.min.y(), meshBox.min.z(), meshBox.max.x(), meshBox.max.y(), meshBox.max.z(),
+                      inputBox.min.x(), inputBox.min.y(), inputBox.min.z(), inputBox.max.x(), inputBox.max.y(), inputBox.max.z());
+        throw Error(buf);
+    }
 }
 
 // ---- verdict -----------------------------------------------------------------------------------
@@ -357,6 +380,7 @@ nlohmann::json evaluateMesh(const TetMesh& mesh, const JawSurfaces* input, const
     }
 
     // Distances to the input surfaces.
+    if (input) requireInputOverlapsMesh(mesh, *input);
     if (!input) {
         report["distance"] = nullptr;
     } else {

@@ -35,7 +35,8 @@ struct EvalOptions {
 /// Returns report.json's content: keys "schema", "verdict", "mesh", "validation", "sizes",
 /// "regions", "quality", "distance" (null without input), "pdl_thickness", "options", "seconds".
 /// A structurally broken mesh (indices out of range, unknown labels) gets the validation part and
-/// a failing verdict only. Never throws for a bad mesh; throws Cancelled.
+/// a failing verdict only. Never throws for a bad mesh; throws Error when `input` does not overlap
+/// the mesh (bounding boxes sharing less than half the smaller one: a wrong input folder), Cancelled.
 /// Deterministic for any thread count. Cost: validation and face adjacency O(T log T), quality
 /// O(T), distances one BVH query per area sample (a few seconds for a 1 M-tet jaw against a
 /// 1.7 M-triangle input on two cores).

@@ -158,6 +158,20 @@ TEST(EvalCommandErrors, BadInputNamesTheFileAndFails) {
         EXPECT_EQ(r.exitCode, 1);
         EXPECT_NE(r.err.find("not an input folder"), std::string::npos) << r.err;
     }
+    {
+        // Another jaw's input: the surfaces are somewhere else entirely.
+        JawSurfaces other = syntheticJawInput();
+        for (SurfaceMesh* s : {&other.bone, &other.teeth.at(24), &other.teeth.at(25)})
+            for (Vec3& v : s->vertices) v += Vec3(60, 0, 0);
+        writeSurface(other.bone, (dir / "other/input/mandible/bone/mandible.stl").string());
+        for (int unn : {24, 25})
+            writeSurface(other.teeth.at(unn), (dir / ("other/input/mandible/teeth/tooth_" + std::to_string(unn) + ".stl")).string());
+        const CommandResult r = runJawmesh("eval " + (dir / "mandible.msh").string() + " --input " + (dir / "other").string() + " -o " +
+                                               (dir / "out").string(),
+                                           dir);
+        EXPECT_EQ(r.exitCode, 1);
+        EXPECT_NE(r.err.find("do not match the mesh"), std::string::npos) << r.err;
+    }
     EXPECT_FALSE(fs::exists(dir / "out/report.json"));
     // Without --input the report still has quality and PDL thickness, and no distances.
     const CommandResult ok = runJawmesh("--quiet eval " + (dir / "mandible.msh").string() + " -o " + (dir / "bare").string(), dir);
