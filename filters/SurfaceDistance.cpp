@@ -14,9 +14,15 @@ namespace {
 constexpr int kMaxSubdivisions = 1000;  // per edge; only a triangle a thousand spacings long gets there
 constexpr int kMaxRefineDepth = 24;     // 2^-24 of a triangle: far below any tolerance in mm
 
+/// Sub-triangles per edge: enough for one sample per equilateral triangle of side `spacing` (by
+/// area, so a dense input's small triangles get one sample each), and for a sliver at least one
+/// per three spacings of its length.
 int subdivisions(const Vec3& a, const Vec3& b, const Vec3& c, double spacingMm) {
     const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
-    return std::clamp(static_cast<int>(std::ceil(longest / spacingMm)), 1, kMaxSubdivisions);
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const double byArea = std::ceil(std::sqrt(area / (0.4330127018922193 * spacingMm * spacingMm)));
+    const double byLength = std::ceil(longest / (3.0 * spacingMm));
+    return std::clamp(static_cast<int>(std::max(byArea, byLength)), 1, kMaxSubdivisions);
 }
 
 /// Calls f(point) for the n^2 sub-triangle centroids of (a, a + u, a + v), in sample order.

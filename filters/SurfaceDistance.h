@@ -2,9 +2,10 @@
 // distances and of the PDL thickness in the evaluation report.
 //
 // Definitions (docs/DESIGN.md, "Evaluation"):
-//  - Area samples: each triangle of the `from` surface is cut into n^2 similar sub-triangles,
-//    n = max(1, ceil(longest edge / spacing)); a sample is a sub-triangle's centroid, weighted by
-//    its area. Means and percentiles are area-weighted over these samples.
+//  - Area samples: each triangle of the `from` surface is cut into n^2 similar sub-triangles, n the
+//    smallest giving sub-triangles no larger than an equilateral triangle of side `spacing` (and
+//    n >= longest edge / (3 spacing) for slivers), at least 1; a sample is a sub-triangle's
+//    centroid, weighted by its area. Means and percentiles are area-weighted over these samples.
 //  - The maximum (directed Hausdorff distance) is over every point of the triangles, not just the
 //    samples: a branch and bound subdivides only the triangles that could still beat the largest
 //    sampled distance, using two upper bounds of the distance over a sub-triangle (Lipschitz: the

@@ -40,31 +40,33 @@ struct Builder {
     void build(std::int64_t begin, std::int64_t end, std::int64_t node) {
         const std::int64_t n = end - begin;
         TriangleBvh::Node& out = bvh.nodes[static_cast<std::size_t>(node)];
-        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        Vec3 clo = lo, chi = hi;
-        for (std::int64_t i = begin; i < end; ++i) {
-            const Tri& t = triangles[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
-            for (int k = 0; k < 3; ++k) {
-                const Vec3& v = vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])];
-                lo = lo.cwiseMin(v);
-                hi = hi.cwiseMax(v);
-            }
-            const Vec3& c = centroids[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
-            clo = clo.cwiseMin(c);
-            chi = chi.cwiseMax(c);
-        }
-        out.lo = {lo.x(), lo.y(), lo.z()};
-        out.hi = {hi.x(), hi.y(), hi.z()};
         if (n <= kLeafSize) {
+            Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+            for (std::int64_t i = begin; i < end; ++i) {
+                const Tri& t = triangles[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
+                for (int k = 0; k < 3; ++k) {
+                    const Vec3& v = vertices[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])];
+                    lo = lo.cwiseMin(v);
+                    hi = hi.cwiseMax(v);
+                }
+            }
+            out.lo = {lo.x(), lo.y(), lo.z()};
+            out.hi = {hi.x(), hi.y(), hi.z()};
             out.first = static_cast<std::int32_t>(begin);
             out.count = static_cast<std::int32_t>(n);
             return;
         }
+        // Split at the median centroid along the widest spread of the centroids.
+        Vec3 clo = Vec3::Constant(std::numeric_limits<double>::infinity()), chi = -clo;
+        for (std::int64_t i = begin; i < end; ++i) {
+            const Vec3& c = centroids[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
+            clo = clo.cwiseMin(c);
+            chi = chi.cwiseMax(c);
+        }
         int axis = 0;
         (chi - clo).maxCoeff(&axis);
         const std::int64_t mid = begin + n / 2;
-        auto* first = order.data() + begin;
-        std::nth_element(first, order.data() + mid, order.data() + end, [&](std::int32_t a, std::int32_t b) {
+        std::nth_element(order.data() + begin, order.data() + mid, order.data() + end, [&](std::int32_t a, std::int32_t b) {
             const double ca = centroids[static_cast<std::size_t>(a)][axis], cb = centroids[static_cast<std::size_t>(b)][axis];
             return ca < cb || (ca == cb && a < b);
         });
@@ -75,6 +77,13 @@ struct Builder {
         } else {
             build(begin, mid, left);
             build(mid, end, right);
+        }
+        // The box from the children's, so every triangle is looked at once (at its leaf).
+        const TriangleBvh::Node& l = bvh.nodes[static_cast<std::size_t>(left)];
+        const TriangleBvh::Node& r = bvh.nodes[static_cast<std::size_t>(right)];
+        for (std::size_t k = 0; k < 3; ++k) {
+            out.lo[k] = std::min(l.lo[k], r.lo[k]);
+            out.hi[k] = std::max(l.hi[k], r.hi[k]);
         }
     }
 };
