@@ -8,7 +8,7 @@ cd "$(dirname "$0")"
 PACKAGES=(cmake make g++ pkg-config
   libopenvdb-dev libboost-iostreams-dev libboost-system-dev libtbb-dev libembree-dev libtet1.5-dev
   libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev python3-meshio
-  calculix-ccx)
+  calculix-ccx zlib1g-dev chromium)
 
 install_packages() {
   local missing=()

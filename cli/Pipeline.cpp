@@ -1,5 +1,6 @@
 #include "cli/Pipeline.h"
 
+#include "cli/EvalReport.h"
 #include "fe/FeDecks.h"
 #include "io/Error.h"
 #include "io/GmshWriter.h"
@@ -248,6 +249,9 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         }
     });
 
+    record["eval"] = log.run(jaw + ": eval", progress, [&] {
+        return runReport(mesh, jawCase, options.load, options.carve.pdlThicknessMm, outJawDir, progress);
+    });
     record["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
     record["peak_memory_bytes"] = peakResidentMemoryBytes();
     writeFileAtomically(outJawDir + "/run.json", [&](std::ostream& out) { out << record.dump(2) << '\n'; }, false);

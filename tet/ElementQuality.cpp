@@ -42,14 +42,35 @@ TetShape tetShape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 
     const double shortest2 = std::min({u.squaredNorm(), v.squaredNorm(), w.squaredNorm(), (c - b).squaredNorm(),
                                        (d - b).squaredNorm(), (d - c).squaredNorm()});
+    const double sumEdge2 = u.squaredNorm() + v.squaredNorm() + w.squaredNorm() + (c - b).squaredNorm() +
+                            (d - b).squaredNorm() + (d - c).squaredNorm();
     if (det == 0 || shortest2 == 0) {
         s.radiusEdgeRatio = std::numeric_limits<double>::infinity();
-    } else {
-        const Vec3 centre = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) /
-                            (2.0 * det);
-        s.radiusEdgeRatio = centre.norm() / std::sqrt(shortest2);
+        return s;  // radius and volume-edge ratios stay 0
     }
+    const Vec3 centre =
+        (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / (2.0 * det);
+    const double circumradius = centre.norm();
+    s.radiusEdgeRatio = circumradius / std::sqrt(shortest2);
+    // Inradius = 3 V / total face area; the face area vectors n[] are twice the areas.
+    const double area = 0.5 * (n[0].norm() + n[1].norm() + n[2].norm() + n[3].norm());
+    const double volume = std::abs(det) / 6.0;
+    s.radiusRatio = 3.0 * (3.0 * volume / area) / circumradius;
+    const double rmsEdge = std::sqrt(sumEdge2 / 6.0);
+    s.volumeEdgeRatio = 6.0 * std::sqrt(2.0) * volume / (rmsEdge * rmsEdge * rmsEdge);
     return s;
+}
+
+std::vector<TetShape> tetShapes(const TetMesh& mesh) {
+    std::vector<TetShape> shapes(mesh.tets.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, shapes.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            const Tet& e = mesh.tets[t];
+            shapes[t] = tetShape(mesh.nodes[static_cast<std::size_t>(e[0])], mesh.nodes[static_cast<std::size_t>(e[1])],
+                                 mesh.nodes[static_cast<std::size_t>(e[2])], mesh.nodes[static_cast<std::size_t>(e[3])]);
+        }
+    });
+    return shapes;
 }
 
 QualityStats measureQuality(const TetMesh& mesh, double dihedralThresholdDeg) {
@@ -57,14 +78,7 @@ QualityStats measureQuality(const TetMesh& mesh, double dihedralThresholdDeg) {
     const std::size_t n = mesh.tets.size();
     q.tets = n;
     if (n == 0) return q;
-    std::vector<TetShape> shapes(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t t = r.begin(); t != r.end(); ++t) {
-            const Tet& e = mesh.tets[t];
-            shapes[t] = tetShape(mesh.nodes[static_cast<std::size_t>(e[0])], mesh.nodes[static_cast<std::size_t>(e[1])],
-                                 mesh.nodes[static_cast<std::size_t>(e[2])], mesh.nodes[static_cast<std::size_t>(e[3])]);
-        }
-    });
+    const std::vector<TetShape> shapes = tetShapes(mesh);
     double sum = 0;
     for (std::size_t t = 0; t < n; ++t) {
         const TetShape& s = shapes[t];

@@ -1,11 +1,12 @@
-// Shape measures of linear tetrahedra: dihedral angles and radius-edge ratio, per element and
-// summarised over a mesh (overall and per label).
+// Shape measures of linear tetrahedra: dihedral angles, radius-edge, radius and volume-edge ratios,
+// per element and summarised over a mesh (overall and per label).
 #pragma once
 
 #include "io/TetMesh.h"
 
 #include <cstdint>
 #include <map>
+#include <vector>
 
 namespace jawmesh {
 
@@ -13,13 +14,22 @@ namespace jawmesh {
 struct TetShape {
     double minDihedralDeg = 0;   ///< smallest of the 6 interior dihedral angles, degrees
     double maxDihedralDeg = 0;   ///< largest, degrees
-    double radiusEdgeRatio = 0;  ///< circumradius / shortest edge (regular tet: 0.612); inf if flat
+    double radiusEdgeRatio = 0;  ///< circumradius / shortest edge (regular tet: 0.612, TetGen's -q
+                                 ///< measure, kept unnormalised by that convention); inf if flat
+    double radiusRatio = 0;      ///< 3 * inradius / circumradius: 1 regular, 0 flat
+    double volumeEdgeRatio = 0;  ///< 6 sqrt(2) |V| / (rms edge)^3: 1 regular, 0 flat
     double signedVolume = 0;     ///< mm^3, positive for the orientation of io/TetMesh.h
 };
+
+/// Radius-edge ratio of the regular tetrahedron, sqrt(6) / 4 (the lower bound of the measure).
+constexpr double kRegularRadiusEdgeRatio = 0.6123724356957945;
 
 /// Shape of the tet (a, b, c, d), mm. Never throws; a flat tet gets dihedrals of 0/180 and an
 /// infinite radius-edge ratio. Cost: O(1).
 TetShape tetShape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// Shape of every tet of `mesh` (indices must be in range), in tet order. Cost: O(T), TBB-parallel.
+std::vector<TetShape> tetShapes(const TetMesh& mesh);
 
 /// Quality summary over a mesh.
 struct QualityStats {

@@ -5,14 +5,15 @@
 #include "tet/TetFaceAdjacency.h"
 
 #include <filesystem>
-#include <unordered_map>
+#include <algorithm>
 
 namespace jawmesh {
 
-std::map<Label, SurfaceMesh> regionSurfaces(const TetMesh& mesh) {
+std::map<Label, RegionBoundary> regionBoundaries(const TetMesh& mesh) {
     const TetFaceAdjacency adj = tetFaceAdjacency(mesh);
     // Faces in adjacency order (sorted by node key), so the output is deterministic.
     std::map<Label, std::vector<Tri>> faces;
+    std::map<Label, std::vector<Label>> others;
     for (std::size_t g = 0; g < adj.groupCount(); ++g) {
         const std::size_t begin = static_cast<std::size_t>(adj.groupStart[g]);
         const std::size_t size = adj.groupSize(g);
@@ -20,30 +21,45 @@ std::map<Label, SurfaceMesh> regionSurfaces(const TetMesh& mesh) {
             const TetFaceRef& f = adj.faces[k];
             const Label own = mesh.labels[static_cast<std::size_t>(f.tet)];
             bool sameOnOtherSide = false;
-            for (std::size_t o = begin; o < begin + size; ++o)
-                if (o != k && mesh.labels[static_cast<std::size_t>(adj.faces[o].tet)] == own) sameOnOtherSide = true;
+            Label other = kOutsideLabel;
+            for (std::size_t o = begin; o < begin + size; ++o) {
+                if (o == k) continue;
+                const Label l = mesh.labels[static_cast<std::size_t>(adj.faces[o].tet)];
+                if (l == own) sameOnOtherSide = true;
+                else if (other == kOutsideLabel) other = l;
+            }
             if (sameOnOtherSide) continue;
             const auto tri = outwardFace(mesh.tets[static_cast<std::size_t>(f.tet)], f.local);
             faces[own].push_back({tri[0], tri[1], tri[2]});
+            others[own].push_back(other);
         }
     }
-    std::map<Label, SurfaceMesh> out;
+    std::map<Label, RegionBoundary> out;
+    std::vector<std::int32_t> local(mesh.nodes.size(), -1);  // node -> surface vertex, reset per region
     for (auto& [label, tris] : faces) {
-        SurfaceMesh& s = out[label];
+        out[label].otherSide = std::move(others[label]);
+        SurfaceMesh& s = out[label].surface;
         std::vector<std::int32_t> used;
         used.reserve(3 * tris.size());
         for (const Tri& t : tris) used.insert(used.end(), t.begin(), t.end());
         std::sort(used.begin(), used.end());
         used.erase(std::unique(used.begin(), used.end()), used.end());
-        std::unordered_map<std::int32_t, std::int32_t> local;
-        local.reserve(used.size());
+        s.vertices.reserve(used.size());
         for (std::size_t i = 0; i < used.size(); ++i) {
-            local[used[i]] = static_cast<std::int32_t>(i);
+            local[static_cast<std::size_t>(used[i])] = static_cast<std::int32_t>(i);
             s.vertices.push_back(mesh.nodes[static_cast<std::size_t>(used[i])]);
         }
         s.triangles.reserve(tris.size());
-        for (const Tri& t : tris) s.triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
+        for (const Tri& t : tris)
+            s.triangles.push_back({local[static_cast<std::size_t>(t[0])], local[static_cast<std::size_t>(t[1])], local[static_cast<std::size_t>(t[2])]});
+        for (std::int32_t v : used) local[static_cast<std::size_t>(v)] = -1;
     }
+    return out;
+}
+
+std::map<Label, SurfaceMesh> regionSurfaces(const TetMesh& mesh) {
+    std::map<Label, SurfaceMesh> out;
+    for (auto& [label, boundary] : regionBoundaries(mesh)) out[label] = std::move(boundary.surface);
     return out;
 }
 

@@ -11,6 +11,18 @@
 
 namespace jawmesh {
 
+/// A region's boundary surface with, for each triangle, the label on its other side (kOutsideLabel
+/// on the outside): lets metrics split a surface by neighbour (a tooth's crown faces the outside,
+/// its root the PDL or bone).
+struct RegionBoundary {
+    SurfaceMesh surface;
+    std::vector<Label> otherSide;  ///< one per surface triangle
+};
+
+/// As regionSurfaces(), keeping the label across each triangle (for a face shared by more than two
+/// tets, the first other label in adjacency order). Cost: as regionSurfaces().
+std::map<Label, RegionBoundary> regionBoundaries(const TetMesh& mesh);
+
 /// Boundary surface of every region of `mesh`, keyed by label: closed wherever the region is,
 /// oriented outward (normals point out of the region; tets must be positively oriented), vertices
 /// compacted in increasing node order. An interface face appears in both regions' surfaces with

@@ -1,0 +1,36 @@
+// The evaluation report of one meshed jaw on disk: report.json, report.html (self-contained) and
+// sections/*.png in a folder. Wiring only: tet/EvaluateMesh measures, filters/CrossSection cuts,
+// io/ writes. Used by `jawmesh eval` and at the end of every `jawmesh run`.
+#pragma once
+
+#include "io/Case.h"
+#include "io/Progress.h"
+#include "io/TetMesh.h"
+#include "tet/EvaluateMesh.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace jawmesh {
+
+/// Evaluates `mesh` (against `input` when not null), renders a cross-section through every tooth
+/// and one through the arch, and writes <dir>/report.json, <dir>/report.html and
+/// <dir>/sections/<name>.png (each file written to a temporary name and renamed). `title` heads
+/// the page. Returns the report. Throws Error on I/O failure, Cancelled.
+nlohmann::json writeEvalReport(const TetMesh& mesh, const JawSurfaces* input, const EvalOptions& options,
+                               const std::string& dir, const std::string& title, Progress& progress = noProgress());
+
+/// The input surfaces of a jaw for evaluation, from either a jaw folder (<case>/input/<jaw>) or a
+/// case folder (<case>; then `jaw` picks the jaw). Throws Error naming the folder when it is
+/// neither or lacks that jaw, and whatever loadJaw() throws.
+JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& load = {}, Progress& progress = noProgress());
+
+/// End-of-run report: loads the jaw's input again (the run freed it), writes <outJawDir>/report/,
+/// and returns the short summary that goes into run.json ("eval": verdict status and line,
+/// seconds). Never throws Error: a failed report is returned as {"error": ...} so the validated
+/// mesh of the run stays the run's result. Throws Cancelled.
+nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, double pdlTargetMm,
+                         const std::string& outJawDir, Progress& progress = noProgress());
+
+}  // namespace jawmesh

@@ -1,0 +1,243 @@
+#include "filters/SurfaceDistance.h"
+
+#include "filters/TriangleGeometry.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+namespace jawmesh {
+namespace {
+
+constexpr int kMaxSubdivisions = 1000;  // per edge; only a triangle a thousand spacings long gets there
+constexpr int kMaxRefineDepth = 24;     // 2^-24 of a triangle: far below any tolerance in mm
+
+/// Sub-triangles per edge: enough for one sample per equilateral triangle of side `spacing` (by
+/// area, so a dense input's small triangles get one sample each), and for a sliver at least one
+/// per three spacings of its length.
+int subdivisions(const Vec3& a, const Vec3& b, const Vec3& c, double spacingMm) {
+    const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const double byArea = std::ceil(std::sqrt(area / (0.4330127018922193 * spacingMm * spacingMm)));
+    const double byLength = std::ceil(longest / (3.0 * spacingMm));
+    return std::clamp(static_cast<int>(std::max(byArea, byLength)), 1, kMaxSubdivisions);
+}
+
+/// Calls f(point) for the n^2 sub-triangle centroids of (a, a + u, a + v), in sample order.
+template <typename F>
+void forEachSamplePoint(const Vec3& a, const Vec3& u, const Vec3& v, int n, F&& f) {
+    const auto at = [&](int i3, int j3) { return Vec3(a + (i3 / (3.0 * n)) * u + (j3 / (3.0 * n)) * v); };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; i + j < n; ++j) {
+            f(at(3 * i + 1, 3 * j + 1));                  // upward sub-triangle
+            if (i + j < n - 1) f(at(3 * i + 2, 3 * j + 2));  // the downward one beside it
+        }
+}
+
+struct Corner {
+    Vec3 p;
+    double d;             // distance to `to`, mm
+    std::int32_t closest; // nearest triangle of `to`
+};
+
+Corner measure(const TriangleBvh& to, const Vec3& p, std::int32_t hint) {
+    const ClosestTriangle c = closestTriangle(to, p, hint);
+    return {p, std::sqrt(c.squaredDistanceMm2), c.triangle};
+}
+
+/// Upper bound of the distance over triangle (a, b, c) without new queries: the smaller of the
+/// Lipschitz bound from each corner and the convex bound of each corner's nearest `to` triangle.
+double upperBound(const Corner* k, const TriangleBvh& to) {
+    const double ab = (k[1].p - k[0].p).norm(), bc = (k[2].p - k[1].p).norm(), ca = (k[0].p - k[2].p).norm();
+    double u = std::min({k[0].d + std::max(ab, ca), k[1].d + std::max(ab, bc), k[2].d + std::max(bc, ca)});
+    for (int i = 0; i < 3; ++i) {
+        const auto& t = to.corners[static_cast<std::size_t>(to.slotOf[static_cast<std::size_t>(k[i].closest)])];
+        double worst2 = 0;
+        for (int j = 0; j < 3; ++j) worst2 = std::max(worst2, squaredDistanceToTriangle(k[j].p, t[0], t[1], t[2]));
+        u = std::min(u, std::sqrt(worst2));
+    }
+    return u;
+}
+
+/// Branch and bound over (a, b, c) given its measured corners; raises best (and *where) when a
+/// point beats it. Serial and in a fixed order, so the result depends only on the inputs.
+void refineMax(const Corner& a, const Corner& b, const Corner& c, const TriangleBvh& to, double toleranceMm,
+               double& best, Vec3* where) {
+    struct Item {
+        Corner k[3];
+        int depth;
+    };
+    std::vector<Item> stack;
+    stack.push_back({{a, b, c}, 0});
+    const auto raise = [&](const Corner& k) {
+        if (k.d > best) {
+            best = k.d;
+            if (where) *where = k.p;
+        }
+    };
+    raise(a);
+    raise(b);
+    raise(c);
+    while (!stack.empty()) {
+        const Item item = stack.back();
+        stack.pop_back();
+        const Corner* k = item.k;
+        if (upperBound(k, to) <= best + toleranceMm) continue;
+        const Vec3 centre = (k[0].p + k[1].p + k[2].p) / 3.0;
+        const Corner m = measure(to, centre, k[0].closest);
+        raise(m);
+        const double radius = std::sqrt(std::max({(k[0].p - centre).squaredNorm(), (k[1].p - centre).squaredNorm(),
+                                                  (k[2].p - centre).squaredNorm()}));
+        if (m.d + radius <= best + toleranceMm || item.depth >= kMaxRefineDepth) continue;
+        const Corner ab = measure(to, 0.5 * (k[0].p + k[1].p), k[0].closest);
+        const Corner bc = measure(to, 0.5 * (k[1].p + k[2].p), k[1].closest);
+        const Corner ca = measure(to, 0.5 * (k[2].p + k[0].p), k[2].closest);
+        raise(ab);
+        raise(bc);
+        raise(ca);
+        const int depth = item.depth + 1;
+        stack.push_back({{k[0], ab, ca}, depth});
+        stack.push_back({{ab, k[1], bc}, depth});
+        stack.push_back({{ca, bc, k[2]}, depth});
+        stack.push_back({{bc, ca, ab}, depth});
+    }
+}
+
+}  // namespace
+
+DistanceSamples sampleDistances(const SurfaceMesh& from, const TriangleBvh& to, double spacingMm, Progress& progress) {
+    DistanceSamples s;
+    const std::size_t nt = from.triangles.size();
+    s.firstOfTriangle.assign(nt + 1, 0);
+    std::vector<int> n(nt);
+    for (std::size_t t = 0; t < nt; ++t) {
+        const Tri& tri = from.triangles[t];
+        n[t] = subdivisions(from.vertices[static_cast<std::size_t>(tri[0])], from.vertices[static_cast<std::size_t>(tri[1])],
+                            from.vertices[static_cast<std::size_t>(tri[2])], spacingMm);
+        s.firstOfTriangle[t + 1] = s.firstOfTriangle[t] + static_cast<std::int64_t>(n[t]) * n[t];
+    }
+    const std::size_t total = static_cast<std::size_t>(s.firstOfTriangle[nt]);
+    s.distanceMm.resize(total);
+    s.weightMm2.resize(total);
+    s.sourceTriangle.resize(total);
+    s.closestTriangle.resize(total);
+    std::atomic<std::size_t> done{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+        progress.checkCancelled();
+        std::int32_t hint = -1;  // the previous answer: a nearby triangle, only speeds the query up
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            const Tri& tri = from.triangles[t];
+            const Vec3& a = from.vertices[static_cast<std::size_t>(tri[0])];
+            const Vec3 u = from.vertices[static_cast<std::size_t>(tri[1])] - a;
+            const Vec3 v = from.vertices[static_cast<std::size_t>(tri[2])] - a;
+            const int k = n[t];
+            const double weight = 0.5 * u.cross(v).norm() / (static_cast<double>(k) * k);
+            std::size_t out = static_cast<std::size_t>(s.firstOfTriangle[t]);
+            forEachSamplePoint(a, u, v, k, [&](const Vec3& p) {
+                const ClosestTriangle c = closestTriangle(to, p, hint);
+                hint = c.triangle;
+                s.distanceMm[out] = std::sqrt(c.squaredDistanceMm2);
+                s.weightMm2[out] = weight;
+                s.sourceTriangle[out] = static_cast<std::int32_t>(t);
+                s.closestTriangle[out] = c.triangle;
+                ++out;
+            });
+        }
+        progress.update(static_cast<double>(done += r.size()) / static_cast<double>(nt));
+    });
+    return s;
+}
+
+std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const DistanceSamples& samples,
+                                                const std::vector<int>& groupOfTriangle, int groupCount,
+                                                const TriangleBvh& to, double toleranceMm, Progress& progress) {
+    const std::size_t nt = from.triangles.size();
+    std::vector<DistanceSummary> out(static_cast<std::size_t>(std::max(groupCount, 0)));
+    std::vector<std::vector<double>> values(out.size()), weights(out.size());
+    for (std::size_t t = 0; t < nt; ++t) {
+        const int g = groupOfTriangle[t];
+        if (g < 0) continue;
+        for (std::int64_t i = samples.firstOfTriangle[t]; i < samples.firstOfTriangle[t + 1]; ++i) {
+            values[static_cast<std::size_t>(g)].push_back(samples.distanceMm[static_cast<std::size_t>(i)]);
+            weights[static_cast<std::size_t>(g)].push_back(samples.weightMm2[static_cast<std::size_t>(i)]);
+        }
+    }
+    // The largest sample of each group (first in sample order) is the bar a triangle must beat to
+    // be refined, and where the max is until one does.
+    std::vector<double> barOf(out.size(), -1.0);
+    std::vector<std::size_t> barSample(out.size(), 0);
+    for (std::size_t t = 0; t < nt; ++t) {
+        const int g = groupOfTriangle[t];
+        if (g < 0) continue;
+        for (std::int64_t i = samples.firstOfTriangle[t]; i < samples.firstOfTriangle[t + 1]; ++i)
+            if (samples.distanceMm[static_cast<std::size_t>(i)] > barOf[static_cast<std::size_t>(g)]) {
+                barOf[static_cast<std::size_t>(g)] = samples.distanceMm[static_cast<std::size_t>(i)];
+                barSample[static_cast<std::size_t>(g)] = static_cast<std::size_t>(i);
+            }
+    }
+
+    // Most triangles are settled by their own samples: every point of a sub-triangle is within its
+    // centroid-to-corner radius of the sample at that centroid (distance is 1-Lipschitz), so a
+    // triangle whose samples plus that radius stay below the bar cannot beat it. Only the others
+    // get corner queries and the branch and bound.
+    std::vector<double> triangleMax(nt, 0.0);
+    std::vector<Vec3> triangleWhere(nt, Vec3::Zero());
+    std::atomic<std::size_t> done{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        progress.checkCancelled();
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            const int g = groupOfTriangle[t];
+            if (g < 0) continue;
+            const double bar = barOf[static_cast<std::size_t>(g)];
+            triangleMax[t] = bar;
+            const Tri& tri = from.triangles[t];
+            const Vec3& a = from.vertices[static_cast<std::size_t>(tri[0])];
+            const Vec3& b = from.vertices[static_cast<std::size_t>(tri[1])];
+            const Vec3& c = from.vertices[static_cast<std::size_t>(tri[2])];
+            const std::int64_t first = samples.firstOfTriangle[t], count = samples.firstOfTriangle[t + 1] - first;
+            const Vec3 centre = (a + b + c) / 3.0;
+            const double radius = std::sqrt(std::max({(a - centre).squaredNorm(), (b - centre).squaredNorm(), (c - centre).squaredNorm()})) /
+                                  std::sqrt(static_cast<double>(count));  // sub-triangles are the triangle scaled by 1/n
+            double worst = 0;
+            for (std::int64_t i = first; i < first + count; ++i) worst = std::max(worst, samples.distanceMm[static_cast<std::size_t>(i)]);
+            if (worst + radius <= bar + toleranceMm) continue;
+            const std::int32_t hint = samples.closestTriangle[static_cast<std::size_t>(first)];
+            const Corner ka = measure(to, a, hint), kb = measure(to, b, ka.closest), kc = measure(to, c, kb.closest);
+            double best = bar;
+            refineMax(ka, kb, kc, to, toleranceMm, best, &triangleWhere[t]);
+            triangleMax[t] = best;  // == bar unless a point of this triangle beats it
+        }
+        progress.update(static_cast<double>(done += r.size()) / static_cast<double>(nt));
+    });
+
+    for (std::size_t g = 0; g < out.size(); ++g) {
+        DistanceSummary& s = out[g];
+        s.distance = summarizeWeighted(values[g], weights[g]);
+        s.areaMm2 = s.distance.totalWeight;
+        if (values[g].empty()) continue;
+        const std::size_t i = barSample[g];
+        const std::size_t t = static_cast<std::size_t>(samples.sourceTriangle[i]);
+        const Tri& tri = from.triangles[t];
+        const Vec3& a = from.vertices[static_cast<std::size_t>(tri[0])];
+        const Vec3 u = from.vertices[static_cast<std::size_t>(tri[1])] - a, v = from.vertices[static_cast<std::size_t>(tri[2])] - a;
+        std::size_t index = static_cast<std::size_t>(samples.firstOfTriangle[t]);
+        const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(samples.firstOfTriangle[t + 1] - samples.firstOfTriangle[t]))));
+        forEachSamplePoint(a, u, v, n, [&](const Vec3& p) {
+            if (index++ == i) s.maxAt = p;
+        });
+    }
+    for (std::size_t t = 0; t < nt; ++t) {  // serial, lowest triangle first: a unique location
+        const int g = groupOfTriangle[t];
+        if (g < 0) continue;
+        DistanceSummary& s = out[static_cast<std::size_t>(g)];
+        if (triangleMax[t] > s.distance.max) {
+            s.distance.max = triangleMax[t];
+            s.maxAt = triangleWhere[t];
+        }
+    }
+    return out;
+}
+
+}  // namespace jawmesh
