@@ -193,32 +193,61 @@ RawMesh runTetgen(const InterfaceComplex& plc, const TetOptions& o, const Attemp
     return raw;
 }
 
-/// With the boundary preserved, every face between different attributes is an input triangle; its
-/// sides must be the two attributes. A mismatch means a missing or misplaced seed.
-void checkAttributesAgainstSides(const InterfaceComplex& plc, const TetMesh& m) {
+/// With the boundary preserved (-Y) every input triangle is a tet face, so the tets split into
+/// components separated only by input triangles, and each such triangle says which label lies on
+/// which side (its normal points into sides[0]). Labels come from that, not from TetGen's seed
+/// flooding: a seed a rounding error away from a thin region's facet (a PDL fragment at the crest,
+/// seen on the shared mandible) would otherwise label the region wrongly. Tets of components on the
+/// outside side are labeled kOutsideLabel. Throws when a component's sides disagree (an open
+/// region boundary) or a component touches no input triangle.
+void labelFromSides(const InterfaceComplex& plc, TetMesh& m) {
     std::map<std::array<std::int32_t, 3>, std::size_t> triangleOf;
     for (std::size_t t = 0; t < plc.surface.triangles.size(); ++t) {
         auto key = plc.surface.triangles[t];
         std::sort(key.begin(), key.end());
         triangleOf.emplace(key, t);
     }
+    const std::size_t nt = m.tets.size();
+    std::vector<std::int32_t> parent(nt);
+    for (std::size_t t = 0; t < nt; ++t) parent[t] = std::int32_t(t);
+    const auto find = [&](std::int32_t x) {
+        while (parent[std::size_t(x)] != x) x = parent[std::size_t(x)] = parent[std::size_t(parent[std::size_t(x)])];
+        return x;
+    };
     const TetFaceAdjacency adj = tetFaceAdjacency(m);
     for (std::size_t g = 0; g < adj.groupCount(); ++g) {
-        const TetFaceRef& f0 = adj.faces[static_cast<std::size_t>(adj.groupStart[g])];
-        const Label a = m.labels[static_cast<std::size_t>(f0.tet)];
-        const Label b = adj.groupSize(g) == 2 ? m.labels[static_cast<std::size_t>(adj.faces[static_cast<std::size_t>(adj.groupStart[g]) + 1].tet)]
-                                              : kOutsideLabel;
-        if (a == b) continue;
-        const auto it = triangleOf.find(f0.key);
-        if (it == triangleOf.end()) continue;  // split by a Steiner point: cannot be checked here
-        const auto& sides = plc.sides[it->second];
-        if ((sides[0] == a && sides[1] == b) || (sides[0] == b && sides[1] == a)) continue;
-        const Vec3 c = (m.nodes[static_cast<std::size_t>(f0.key[0])] + m.nodes[static_cast<std::size_t>(f0.key[1])] +
-                        m.nodes[static_cast<std::size_t>(f0.key[2])]) / 3.0;
-        throw Error(kWhat, "interface triangle " + std::to_string(it->second) + " near (" + fmt(c.x()) + ", " + fmt(c.y()) +
-                               ", " + fmt(c.z()) + ") separates " + labelName(sides[0]) + " from " + labelName(sides[1]) +
-                               " but the seeds give " + labelName(a) + " and " + labelName(b) +
-                               ": a region has no seed or a seed lies in the wrong region");
+        if (adj.groupSize(g) != 2) continue;
+        const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
+        if (triangleOf.count(f0.key)) continue;
+        const std::int32_t a = find(f0.tet), b = find(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet);
+        if (a != b) parent[std::size_t(std::max(a, b))] = std::min(a, b);
+    }
+    // The label each input-triangle face gives the tet it bounds.
+    constexpr Label kUnset = -1;
+    std::vector<Label> component(nt, kUnset);
+    for (const TetFaceRef& f : adj.faces) {
+        const auto it = triangleOf.find(f.key);
+        if (it == triangleOf.end()) continue;
+        const Tri& tri = plc.surface.triangles[it->second];
+        const Tet& e = m.tets[std::size_t(f.tet)];
+        const Vec3& a = plc.surface.vertices[std::size_t(tri[0])];
+        const Vec3 n = (plc.surface.vertices[std::size_t(tri[1])] - a).cross(plc.surface.vertices[std::size_t(tri[2])] - a);
+        const bool front = n.dot(m.nodes[std::size_t(e[std::size_t(f.local)])] - a) > 0;  // apex on the normal side
+        const Label side = plc.sides[it->second][front ? 0 : 1];
+        Label& c = component[std::size_t(find(f.tet))];
+        if (c == kUnset) c = side;
+        if (c != side) {
+            const Vec3 p = (a + plc.surface.vertices[std::size_t(tri[1])] + plc.surface.vertices[std::size_t(tri[2])]) / 3.0;
+            throw Error(kWhat, "the tets next to interface triangle " + std::to_string(it->second) + " near (" + fmt(p.x()) + ", " +
+                                   fmt(p.y()) + ", " + fmt(p.z()) + ") belong to a component that other triangles give " +
+                                   labelName(c) + ", but this one gives " + labelName(side) +
+                                   ": a region boundary is open (TetGen lost a facet?)");
+        }
+    }
+    for (std::size_t t = 0; t < nt; ++t) {
+        const Label c = component[std::size_t(find(std::int32_t(t)))];
+        if (c == kUnset) throw Error(kWhat, "a group of tets touches no interface triangle (TetGen kept a hull region)");
+        m.labels[t] = c;
     }
 }
 
@@ -284,7 +313,7 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
         stage.update(static_cast<double>(i) / static_cast<double>(runs));
         RawMesh raw = runTetgen(plc, options, ladder[i]);
         ++st.attempts;
-        if (options.preserveBoundary) checkAttributesAgainstSides(plc, raw.mesh);
+        if (options.preserveBoundary) labelFromSides(plc, raw.mesh);
         const std::size_t removed = keepLabeled(raw.mesh);
         if (raw.mesh.tets.empty()) throw Error(kWhat, "no tetrahedron received a label: are the seeds inside their regions?");
         SliverStats slivers;

@@ -56,7 +56,9 @@ double tetVolumeForEdge(double edgeMm);
 /// Note on -Y: TetGen cannot refine a region that is one tet thick between preserved facets (a
 /// thin PDL), so there the interface triangle size sets the element size; with
 /// preserveBoundary = false TetGen may split interface triangles (still conformal, same geometry).
-/// Tetrahedralizes the region interiors of `plc` with TetGen (switches p, q, A, a, Y, M, O, z, Q):
+/// Tetrahedralizes the region interiors of `plc` with TetGen (switches p, q, A, a, Y, M, O, z, Q).
+/// With preserveBoundary, tet labels are read from the sides of the interface triangles around
+/// each group of tets (seeds then only set the volume bounds), so a misplaced seed cannot mislabel:
 /// every interface triangle becomes a facet (marker = interfaceMarker of its sides), each seed a
 /// region whose tets get its label and whose volume bound follows its kind. Tets of enclosed
 /// cavities that carry no seed (attribute 0) are dropped as outside; unused nodes are removed; tets

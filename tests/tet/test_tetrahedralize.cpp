@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <set>
 
 using namespace jawmesh;
@@ -192,23 +193,35 @@ TEST(Tetrahedralize, RejectsSelfIntersectingInput) {
     }
 }
 
-TEST(Tetrahedralize, RejectsMissingOrMisplacedSeeds) {
+TEST(Tetrahedralize, LabelsComeFromTheInterfaceSidesAndBadComplexesAreRejected) {
     InterfaceComplex plc = nestedSpheresComplex(1, 1.0);
     InterfaceComplex noSeeds = plc;
     noSeeds.seeds.clear();
     EXPECT_THROW(tetrahedralize(noSeeds, gradedOptions()), Error);
 
-    // Drop the PDL seed of tooth 25: its shell would be silently lost as "outside" otherwise.
+    // Without the PDL seed of tooth 25 the labels still come out right: they are read from the
+    // interface triangles' sides, not from TetGen's seed flooding (only that region's size bound
+    // is lost).
     InterfaceComplex missing = plc;
     missing.seeds.erase(std::remove_if(missing.seeds.begin(), missing.seeds.end(),
                                        [](const RegionSeed& s) { return s.label == pdlLabel(25); }),
                         missing.seeds.end());
-    try {
-        tetrahedralize(missing, gradedOptions());
-        FAIL() << "no error for a region without a seed";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("seed"), std::string::npos) << e.what();
-    }
+    const TetMesh m = tetrahedralize(missing, gradedOptions());
+    EXPECT_NE(std::find(m.labels.begin(), m.labels.end(), pdlLabel(25)), m.labels.end());
+    EXPECT_TRUE(validateTetMesh(m, {24, 25}).valid());
+
+    // A seed in the wrong region (pdl_24's moved into tooth 24) changes nothing either.
+    InterfaceComplex misplaced = plc;
+    Vec3 toothSeed = Vec3::Zero();
+    for (const auto& seed : plc.seeds)
+        if (seed.label == toothLabel(24)) toothSeed = seed.point;
+    for (auto& seed : misplaced.seeds)
+        if (seed.label == pdlLabel(24)) seed.point = toothSeed;
+    const TetMesh w = tetrahedralize(misplaced, gradedOptions());
+    EXPECT_TRUE(validateTetMesh(w, {24, 25}).valid());
+    std::map<Label, std::size_t> count;
+    for (Label l : w.labels) ++count[l];
+    EXPECT_EQ(count.size(), 5u);
 
     InterfaceComplex outsideLabel = plc;
     outsideLabel.seeds[0].label = kOutsideLabel;
