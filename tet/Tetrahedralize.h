@@ -56,15 +56,16 @@ double tetVolumeForEdge(double edgeMm);
 /// Note on -Y: TetGen cannot refine a region that is one tet thick between preserved facets (a
 /// thin PDL), so there the interface triangle size sets the element size; with
 /// preserveBoundary = false TetGen may split interface triangles (still conformal, same geometry).
-/// Tetrahedralizes the region interiors of `plc` with TetGen (switches p, q, A, a, Y, M, O, z, Q).
-/// With preserveBoundary, tet labels are read from the sides of the interface triangles around
-/// each group of tets (seeds then only set the volume bounds), so a misplaced seed cannot mislabel:
+/// Tetrahedralizes the region interiors of `plc` with TetGen (switches p, q, A, a, Y, M, O, z, Q):
 /// every interface triangle becomes a facet (marker = interfaceMarker of its sides), each seed a
-/// region whose tets get its label and whose volume bound follows its kind. Tets of enclosed
-/// cavities that carry no seed (attribute 0) are dropped as outside; unused nodes are removed; tets
-/// are oriented positively. When the measured minimum dihedral is below options.minDihedralDeg,
-/// TetGen is re-run with stronger optimisation up to options.repairAttempts times and the best mesh
-/// is kept (stats->belowMinDihedral says whether the bound was met).
+/// region whose volume bound follows its kind. With preserveBoundary, tet labels are read from the
+/// sides of the interface triangles around each group of tets, so a missing or misplaced seed
+/// cannot mislabel a region (without it, from the seeds' TetGen attributes). Tets on the outside
+/// side of an interface (enclosed cavities) are dropped; unused nodes are removed; tets are oriented
+/// positively; slivers are then improved (tet/ImproveSlivers.h). When the minimum dihedral is
+/// still below options.minDihedralDeg, TetGen is re-run with stronger optimisation up to
+/// options.repairAttempts times and the best mesh is kept (stats->belowMinDihedral says whether
+/// the bound was met).
 /// Throws Error when the complex is malformed (sizes, indices, no seeds, seed label 0) or TetGen
 /// fails (its reason: self-intersecting facets, too-close facets, tiny features, out of memory...).
 /// Cost: TetGen's, roughly O(n log n) in the output size; single-threaded, deterministic. Not
