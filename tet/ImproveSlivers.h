@@ -23,7 +23,7 @@ namespace jawmesh {
 
 struct SliverOptions {
     double targetMinDihedralDeg = 10.0;  ///< tets below this are worked on
-    int maxPasses = 8;                   ///< passes over the remaining bad tets
+    int maxPasses = 24;                  ///< passes over the remaining bad tets (stops early when none changes anything)
 };
 
 struct SliverStats {
