@@ -4,6 +4,7 @@
 #include "fe/FeDecks.h"
 #include "io/Error.h"
 #include "io/GmshWriter.h"
+#include "io/PolyWriter.h"
 #include "io/LabelsJson.h"
 #include "io/MeditWriter.h"
 #include "io/ResourceUsage.h"
@@ -204,8 +205,17 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
                          {"seeds", complex.seeds.size()}, {"simplify", toJson(simplifyStats)}};
 
     TetStats tetStats;
-    TetMesh mesh = log.run(jaw + ": tetrahedralize", progress,
-                           [&] { return tetrahedralize(complex, options.tet, progress, &tetStats); });
+    TetMesh mesh = log.run(jaw + ": tetrahedralize", progress, [&] {
+        try {
+            return tetrahedralize(complex, options.tet, progress, &tetStats);
+        } catch (const Error& e) {
+            // The surface took most of the run to make: keep it, so the failure can be studied
+            // (`tetgen -pA <file>`, a viewer) without running everything again.
+            const std::string poly = outJawDir + "/failed_surface/" + jaw + ".poly";
+            writeTetgenPoly(complex, poly);
+            throw Error(std::string(e.what()) + " (the interface surface is in " + poly + ")");
+        }
+    });
     const SliverStats& sl = tetStats.slivers;
     record["tetgen"] = {{"switches", tetStats.switches},
                         {"attempts", tetStats.attempts},
