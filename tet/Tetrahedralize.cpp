@@ -150,6 +150,9 @@ std::string switchesFor(const TetOptions& o, int level, double ratio) {
 /// The raw TetGen result: all nodes, tets with their attribute (label, 0 when unseeded).
 struct RawMesh {
     TetMesh mesh;  // labels = attributes, may contain 0
+    /// TetGen's subfaces (sorted node triples): the input triangles, and their pieces where TetGen
+    /// had to split one despite -Y.
+    std::vector<std::array<std::int32_t, 3>> facets;
 };
 
 RawMesh runTetgen(const InterfaceComplex& plc, const TetOptions& o, const Attempt& attempt) {
@@ -190,17 +193,24 @@ RawMesh runTetgen(const InterfaceComplex& plc, const TetOptions& o, const Attemp
             if (seed >= 1 && seed <= static_cast<long>(plc.seeds.size())) m.labels[t] = plc.seeds[static_cast<std::size_t>(seed - 1)].label;
         }
     }
+    for (int f = 0; f < out.numberoftrifaces; ++f) {
+        std::array<std::int32_t, 3> key = {out.trifacelist[3 * f], out.trifacelist[3 * f + 1], out.trifacelist[3 * f + 2]};
+        std::sort(key.begin(), key.end());
+        raw.facets.push_back(key);
+    }
+    std::sort(raw.facets.begin(), raw.facets.end());
     return raw;
 }
 
 /// With the boundary preserved (-Y) every input triangle is a tet face, so the tets split into
-/// components separated only by input triangles, and each such triangle says which label lies on
+/// components separated only by input triangles (or the pieces of one TetGen had to split), and
+/// each whole input triangle says which label lies on
 /// which side (its normal points into sides[0]). Labels come from that, not from TetGen's seed
 /// flooding: a seed a rounding error away from a thin region's facet (a PDL fragment at the crest,
 /// seen on the shared mandible) would otherwise label the region wrongly. Tets of components on the
 /// outside side are labeled kOutsideLabel. Throws when a component's sides disagree (an open
 /// region boundary) or a component touches no input triangle.
-void labelFromSides(const InterfaceComplex& plc, TetMesh& m) {
+void labelFromSides(const InterfaceComplex& plc, const std::vector<std::array<std::int32_t, 3>>& facets, TetMesh& m) {
     std::map<std::array<std::int32_t, 3>, std::size_t> triangleOf;
     for (std::size_t t = 0; t < plc.surface.triangles.size(); ++t) {
         auto key = plc.surface.triangles[t];
@@ -218,7 +228,7 @@ void labelFromSides(const InterfaceComplex& plc, TetMesh& m) {
     for (std::size_t g = 0; g < adj.groupCount(); ++g) {
         if (adj.groupSize(g) != 2) continue;
         const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
-        if (triangleOf.count(f0.key)) continue;
+        if (triangleOf.count(f0.key) || std::binary_search(facets.begin(), facets.end(), f0.key)) continue;
         const std::int32_t a = find(f0.tet), b = find(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet);
         if (a != b) parent[std::size_t(std::max(a, b))] = std::min(a, b);
     }
@@ -313,7 +323,7 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
         stage.update(static_cast<double>(i) / static_cast<double>(runs));
         RawMesh raw = runTetgen(plc, options, ladder[i]);
         ++st.attempts;
-        if (options.preserveBoundary) labelFromSides(plc, raw.mesh);
+        if (options.preserveBoundary) labelFromSides(plc, raw.facets, raw.mesh);
         const std::size_t removed = keepLabeled(raw.mesh);
         if (raw.mesh.tets.empty()) throw Error(kWhat, "no tetrahedron received a label: are the seeds inside their regions?");
         SliverStats slivers;
