@@ -1,0 +1,144 @@
+// `jawmesh batch` end to end on the batch test dataset (tests/batch/make_test_dataset.sh: 6 light
+// phantoms + 1 broken case): the first run completes 6 and reports the broken one with the
+// reader's message and a non-zero exit; an immediate rerun reuses the 6 in seconds; after one
+// finished mesh is deleted, the rerun redoes exactly that case, with identical outputs.
+#include "batch/Manifest.h"
+#include "support/TestData.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sys/wait.h>
+
+namespace jawmesh {
+namespace {
+namespace fs = std::filesystem;
+
+const std::string kJawmesh = JAWMESH_BINARY;
+const std::string kConfig = std::string(JAWMESH_SOURCE_DIR) + "/tests/batch/fast_phantom.json";
+
+int exitCode(const std::string& command) {
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+struct BatchRun {
+    int exitCode = -1;
+    double seconds = 0;
+    BatchManifest manifest;
+};
+
+BatchRun batch(const fs::path& dataset, const fs::path& out, const fs::path& log) {
+    const auto start = std::chrono::steady_clock::now();
+    BatchRun r;
+    r.exitCode = exitCode(kJawmesh + " batch " + dataset.string() + " -o " + out.string() + " --config " + kConfig +
+                          " > " + log.string() + " 2>&1");
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.manifest = readManifest(out.string());
+    std::printf("[batch] run: exit %d, %.1f s\n", r.exitCode, r.seconds);
+    return r;
+}
+
+/// path -> checksum of a finished task's files (from its completion stamp), run.json aside.
+std::map<std::string, std::string> stampedFiles(const fs::path& jawDir) {
+    std::ifstream in(jawDir / "outputs.json");
+    const auto stamp = nlohmann::json::parse(in);
+    std::map<std::string, std::string> files;
+    for (const auto& f : stamp.at("files"))
+        if (f.at("path") != "run.json") files[f.at("path").get<std::string>()] = f.at("checksum").get<std::string>();
+    return files;
+}
+
+std::string readText(const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+bool hasPartialFolders(const fs::path& out) {
+    for (const auto& e : fs::recursive_directory_iterator(out))
+        if (e.path().filename().string().find(".partial-") != std::string::npos) return true;
+    return false;
+}
+
+TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
+    const auto dir = test::scratchDir("batch-command");
+    const fs::path dataset = dir / "dataset", out = dir / "out";
+    ASSERT_EQ(exitCode("bash " + std::string(JAWMESH_SOURCE_DIR) + "/tests/batch/make_test_dataset.sh " + kJawmesh +
+                       " " + dataset.string()),
+              0);
+
+    // First run: 6 ok, the broken case failed with the reader's message naming the file.
+    const BatchRun first = batch(dataset, out, dir / "first.log");
+    EXPECT_NE(first.exitCode, 0) << readText(dir / "first.log");
+    ASSERT_EQ(first.manifest.tasks.size(), 7u);
+    for (int k = 0; k < 6; ++k) {
+        const TaskRecord& r = first.manifest.tasks[static_cast<std::size_t>(k)];
+        EXPECT_EQ(r.task.caseName, "Patient_" + std::to_string(k + 1));
+        EXPECT_EQ(r.status, TaskStatus::Ok) << r.task.caseName << ": " << r.error;
+        EXPECT_FALSE(r.reused);
+        EXPECT_GT(r.seconds, 0.0);
+        EXPECT_GT(r.peakMemoryBytes, 50u * 1000 * 1000) << "the child's peak, measured by the kernel";
+        EXPECT_GT(r.estimatedMemoryBytes, 0u);
+        EXPECT_TRUE(fs::exists(out / r.task.caseName / "mandible" / "volumetric_meshes" / "mandible.msh"));
+    }
+    const TaskRecord& broken = first.manifest.tasks[6];
+    EXPECT_EQ(broken.task.caseName, "Patient_7");
+    EXPECT_EQ(broken.status, TaskStatus::Failed);
+    EXPECT_NE(broken.error.find("Patient_7/input/mandible/bone/mandible.stl"), std::string::npos) << broken.error;
+    EXPECT_FALSE(fs::exists(out / "Patient_7" / "mandible")) << "a failed case leaves no output folder";
+    EXPECT_NE(readText(out / broken.log).find("mandible.stl"), std::string::npos) << "its log has the error";
+    const std::string csv = readText(out / "summary.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 8) << csv;
+    EXPECT_NE(readText(dir / "first.log").find("6 ok (0 reused), 1 failed, 0 pending"), std::string::npos);
+    EXPECT_FALSE(hasPartialFolders(out));
+
+    // Immediate rerun: the 6 are validated and reused in seconds; the broken one is retried.
+    const BatchRun second = batch(dataset, out, dir / "second.log");
+    EXPECT_NE(second.exitCode, 0);
+    for (int k = 0; k < 6; ++k) {
+        const TaskRecord& r = second.manifest.tasks[static_cast<std::size_t>(k)];
+        EXPECT_EQ(r.status, TaskStatus::Ok);
+        EXPECT_TRUE(r.reused) << r.task.caseName;
+    }
+    EXPECT_EQ(second.manifest.tasks[6].status, TaskStatus::Failed);
+    EXPECT_LT(second.seconds, 15.0);
+
+    // One finished mesh deleted: exactly that case is redone, to the same outputs.
+    const fs::path damaged = out / "Patient_3" / "mandible";
+    const auto before = stampedFiles(damaged);
+    fs::remove(damaged / "volumetric_meshes" / "mandible.msh");
+    const BatchRun third = batch(dataset, out, dir / "third.log");
+    EXPECT_NE(third.exitCode, 0);
+    for (int k = 0; k < 6; ++k) {
+        const TaskRecord& r = third.manifest.tasks[static_cast<std::size_t>(k)];
+        EXPECT_EQ(r.status, TaskStatus::Ok) << r.task.caseName << ": " << r.error;
+        EXPECT_EQ(r.reused, r.task.caseName != "Patient_3") << r.task.caseName;
+    }
+    EXPECT_EQ(stampedFiles(damaged), before) << "the redone case's outputs equal the first run's";
+    EXPECT_FALSE(hasPartialFolders(out));
+
+    // --status agrees; --slurm (without --submit) writes an array of the one task left to do.
+    EXPECT_NE(exitCode(kJawmesh + " --quiet batch --status " + out.string()), 0);
+    EXPECT_EQ(readManifest(out.string()).tasks[6].status, TaskStatus::Failed);
+    ASSERT_EQ(exitCode(kJawmesh + " --quiet batch " + dataset.string() + " -o " + out.string() + " --config " + kConfig +
+                       " --slurm --mem 2G > /dev/null"),
+              0);
+    const std::string script = readText(out / "slurm" / "batch.sbatch");
+    EXPECT_NE(script.find("#SBATCH --array=6\n"), std::string::npos) << script;
+    EXPECT_NE(script.find("#SBATCH --mem=2G\n"), std::string::npos) << script;
+
+    // Bad input is one clear error, and nothing is written.
+    EXPECT_NE(exitCode(kJawmesh + " --quiet batch " + (dir / "missing").string() + " -o " + (dir / "out2").string() +
+                       " 2> " + (dir / "err.txt").string()),
+              0);
+    EXPECT_NE(readText(dir / "err.txt").find("does not exist"), std::string::npos) << readText(dir / "err.txt");
+    EXPECT_FALSE(fs::exists(dir / "out2"));
+}
+
+}  // namespace
+}  // namespace jawmesh
