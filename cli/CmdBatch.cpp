@@ -151,6 +151,10 @@ void prepareSlurm(const BatchArgs& args, const GlobalOptions& global) {
         finish(m, out, global);
         return;
     }
+    // Slurm opens each task's log before the task starts: the folder must exist.
+    std::error_code ec;
+    fs::create_directories(out + "/logs", ec);
+    if (ec) throw Error(out + "/logs", "cannot create log folder: " + ec.message());
     SlurmOptions slurm = args.slurmOptions;
     if (slurm.mem.empty()) slurm.mem = slurmMemory(largestEstimate);
     const std::string script = sbatchPath(out);
