@@ -1,7 +1,9 @@
 // `jawmesh batch` end to end on the batch test dataset (tests/batch/make_test_dataset.sh: 6 light
 // phantoms + 1 broken case): the first run completes 6 and reports the broken one with the
 // reader's message and a non-zero exit; an immediate rerun reuses the 6 in seconds; after one
-// finished mesh is deleted, the rerun redoes exactly that case, with identical outputs.
+// finished mesh is deleted (and a batch redoing it is killed mid-task), the rerun redoes exactly
+// that case, with identical outputs.
+#include "batch/ChildProcess.h"
 #include "batch/Manifest.h"
 #include "support/TestData.h"
 
@@ -13,7 +15,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <csignal>
 #include <sys/wait.h>
+#include <thread>
 
 namespace jawmesh {
 namespace {
@@ -57,6 +61,34 @@ std::map<std::string, std::string> stampedFiles(const fs::path& jawDir) {
 std::string readText(const fs::path& path) {
     std::ifstream in(path);
     return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// The pid in the name of the first in-flight folder (".<jaw>.partial-<host>-<pid>") to appear
+/// under caseOut within a minute, or 0.
+int waitForPartialFolder(const fs::path& caseOut) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+        std::error_code ec;
+        for (fs::directory_iterator it(caseOut, ec), end; !ec && it != end; it.increment(ec)) {
+            const std::string name = it->path().filename().string();
+            if (name.find(".partial-") != std::string::npos && name.find(".old") == std::string::npos)
+                return std::stoi(name.substr(name.rfind('-') + 1));
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return 0;
+}
+
+/// True once pid has exited (a zombie waiting for its new parent to reap it counts as exited).
+bool waitUntilGone(int pid) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (std::chrono::steady_clock::now() < deadline) {
+        std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+        std::string pidText, command, state;
+        if (!(stat >> pidText >> command >> state) || state == "Z" || state == "X") return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
 }
 
 bool hasPartialFolders(const fs::path& out) {
@@ -108,10 +140,22 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
     EXPECT_EQ(second.manifest.tasks[6].status, TaskStatus::Failed);
     EXPECT_LT(second.seconds, 15.0);
 
-    // One finished mesh deleted: exactly that case is redone, to the same outputs.
+    // One finished mesh deleted, and the batch that redoes it killed (SIGKILL) mid-task: the task
+    // in flight dies with it, the manifest stays readable and the other outputs untouched.
     const fs::path damaged = out / "Patient_3" / "mandible";
     const auto before = stampedFiles(damaged);
     fs::remove(damaged / "volumetric_meshes" / "mandible.msh");
+    const int coordinator = startChild({kJawmesh, "batch", dataset.string(), "-o", out.string(), "--config", kConfig},
+                                       (dir / "killed.log").string());
+    const int task = waitForPartialFolder(out / "Patient_3");
+    ASSERT_GT(task, 0) << readText(dir / "killed.log");
+    ::kill(coordinator, SIGKILL);
+    while (!reapFinishedChild()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_TRUE(waitUntilGone(task)) << "the task process outlived its batch";
+    EXPECT_EQ(readManifest(out.string()).tasks.size(), 7u);
+    EXPECT_TRUE(hasPartialFolders(out));
+
+    // The rerun redoes exactly that case, to the same outputs, and clears the killed run's leftovers.
     const BatchRun third = batch(dataset, out, dir / "third.log");
     EXPECT_NE(third.exitCode, 0);
     for (int k = 0; k < 6; ++k) {
