@@ -100,8 +100,12 @@ void runLocal(const BatchArgs& args, const GlobalOptions& global) {
                      total, pending, local.maxJobs, local.threadsPerTask,
                      static_cast<double>(local.memoryBudgetBytes) / 1e9);
     local.taskFinished = [&](const TaskRecord& r) {
-        ++done;
         if (global.quiet) return;
+        if (r.status == TaskStatus::Pending) {
+            std::fprintf(stderr, "batch: %s interrupted\n", taskName(r.task).c_str());
+            return;
+        }
+        ++done;
         std::fprintf(stderr, "[%d/%d] %s: %s, %.1f s, %.0f MB%s%s\n", done, total, taskName(r.task).c_str(),
                      statusName(r.status).c_str(), r.seconds, static_cast<double>(r.peakMemoryBytes) / 1e6,
                      r.error.empty() ? "" : ": ", r.error.c_str());
