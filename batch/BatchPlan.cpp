@@ -41,7 +41,7 @@ BatchManifest planBatch(const std::string& datasetDir, const std::string& outDir
     m.options = options;
     m.optionsHash = optionsHash;
     const double voxelMm = options.at("voxel_mm").get<double>();
-    for (const DatasetTask& task : discoverDataset(datasetDir)) {
+    for (const DatasetTask& task : discoverDataset(datasetDir, outDir)) {
         TaskRecord r;
         r.task = task;
         r.optionsHash = optionsHash;

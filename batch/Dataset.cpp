@@ -9,13 +9,17 @@
 namespace jawmesh {
 namespace fs = std::filesystem;
 
-std::vector<DatasetTask> discoverDataset(const std::string& datasetDir) {
+std::vector<DatasetTask> discoverDataset(const std::string& datasetDir, const std::string& excludeDir) {
     std::error_code ec;
     if (!fs::is_directory(datasetDir, ec)) throw Error(datasetDir, "dataset folder does not exist");
     const fs::path root = fs::absolute(datasetDir).lexically_normal();
+    if (fs::is_directory(root / "input", ec))
+        throw Error(datasetDir, "is a case folder, not a dataset of cases: use `jawmesh run`, or give its parent folder");
     std::vector<fs::path> cases;
     for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec))
-        if (it->is_directory() && it->path().filename().string().rfind('.', 0) != 0) cases.push_back(it->path());
+        if (it->is_directory() && it->path().filename().string().rfind('.', 0) != 0 &&
+            (excludeDir.empty() || it->path() != fs::absolute(excludeDir).lexically_normal()))
+            cases.push_back(it->path());
     if (ec) throw Error(datasetDir, "cannot list folder: " + ec.message());
     if (cases.empty()) throw Error(datasetDir, "no case folder (expected <dataset>/<case>/input/<jaw>/...)");
     std::sort(cases.begin(), cases.end());

@@ -18,10 +18,11 @@ struct DatasetTask {
 };
 
 /// Every (case, jaw) of a dataset, cases in name order, mandible before maxilla. Every sub-folder
-/// whose name does not start with '.' is a case; files beside the cases are ignored.
-/// Throws Error when the dataset folder does not exist or holds no case folder.
-/// Cost: a few directory listings per case (no surface is read).
-std::vector<DatasetTask> discoverDataset(const std::string& datasetDir);
+/// whose name does not start with '.' is a case, except excludeDir (a batch's output folder may
+/// live inside its dataset); files beside the cases are ignored.
+/// Throws Error when the dataset folder does not exist, is itself a case (has input/), or holds
+/// no case folder. Cost: a few directory listings per case (no surface is read).
+std::vector<DatasetTask> discoverDataset(const std::string& datasetDir, const std::string& excludeDir = "");
 
 /// "<case>/<jaw>" (or "<case>" for a case that could not be listed): the task's name in tables,
 /// logs and messages.

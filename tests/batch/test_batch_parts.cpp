@@ -122,7 +122,16 @@ TEST(BatchDataset, OneTaskPerCaseAndJawAndBrokenCasesAreTasksToo) {
     EXPECT_NE(tasks[3].discoveryError.find("no input/ folder"), std::string::npos) << tasks[3].discoveryError;
     EXPECT_TRUE(fs::path(tasks[0].caseDir).is_absolute());
 
+    fs::create_directories(ds / "out" / "Patient_1");  // a batch's output folder inside the dataset
+    EXPECT_EQ(discoverDataset(ds.string(), (ds / "out").string()).size(), 4u);
+
     EXPECT_THROW(discoverDataset((ds / "nope").string()), Error);
+    try {
+        discoverDataset((ds / "Patient_1").string());
+        FAIL() << "a case folder is not a dataset";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("is a case folder"), std::string::npos) << e.what();
+    }
     const auto empty = test::scratchDir("batch-dataset-empty");
     EXPECT_THROW(discoverDataset(empty.string()), Error);
 }
