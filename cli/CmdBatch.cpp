@@ -3,6 +3,7 @@
 #include "batch/BatchLayout.h"
 #include "batch/BatchPlan.h"
 #include "batch/ChildProcess.h"
+#include "batch/Dataset.h"
 #include "batch/FolderLock.h"
 #include "batch/Manifest.h"
 #include "batch/MemoryEstimate.h"
@@ -75,8 +76,16 @@ void finish(const BatchManifest& m, const std::string& out, const GlobalOptions&
                                            summaryCsvPath(out) + ")");
 }
 
+/// Checks the dataset and the config before the output folder is created, so bad input leaves
+/// nothing behind.
+void checkInputs(const BatchArgs& args, const std::string& out) {
+    discoverDataset(args.dataset, out);
+    batchOptions(args);
+}
+
 void runLocal(const BatchArgs& args, const GlobalOptions& global) {
     const std::string out = absolute(args.outDir);
+    checkInputs(args, out);
     FolderLock lock(out);
     BatchManifest m = prepare(args, out);
     const int pending = static_cast<int>(std::count_if(m.tasks.begin(), m.tasks.end(),
@@ -137,6 +146,7 @@ std::string submit(const std::string& script) {
 
 void prepareSlurm(const BatchArgs& args, const GlobalOptions& global) {
     const std::string out = absolute(args.outDir);
+    checkInputs(args, out);
     FolderLock lock(out);
     BatchManifest m = prepare(args, out);
     std::vector<std::size_t> indices;
@@ -164,7 +174,7 @@ void prepareSlurm(const BatchArgs& args, const GlobalOptions& global) {
     const std::string script = sbatchPath(out);
     writeFileAtomically(script, [&](std::ostream& o) { o << sbatchScript(slurm, currentExecutablePath(), out, indices); },
                         false);
-    const std::string jobs = std::to_string(indices.size()) + " array tasks (" + arraySpec(indices) + ")";
+    const std::string jobs = std::to_string(indices.size()) + " array task(s) (" + arraySpec(indices) + ")";
     if (!args.submit) {
         std::printf("wrote %s: %s; submit with `sbatch %s`, then collect with `jawmesh batch --status %s`\n",
                     script.c_str(), jobs.c_str(), script.c_str(), out.c_str());

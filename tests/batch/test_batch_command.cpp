@@ -58,6 +58,8 @@ std::map<std::string, std::string> stampedFiles(const fs::path& jawDir) {
     return files;
 }
 
+void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
 std::string readText(const fs::path& path) {
     std::ifstream in(path);
     return std::string(std::istreambuf_iterator<char>(in), {});
@@ -182,6 +184,12 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
               0);
     EXPECT_NE(readText(dir / "err.txt").find("does not exist"), std::string::npos) << readText(dir / "err.txt");
     EXPECT_FALSE(fs::exists(dir / "out2"));
+    writeText(dir / "typo.json", "{\"voxel_mn\": 0.2}");
+    EXPECT_NE(exitCode(kJawmesh + " --quiet batch " + dataset.string() + " -o " + (dir / "out3").string() +
+                       " --config " + (dir / "typo.json").string() + " 2> " + (dir / "err.txt").string()),
+              0);
+    EXPECT_NE(readText(dir / "err.txt").find("unknown config key 'voxel_mn'"), std::string::npos) << readText(dir / "err.txt");
+    EXPECT_FALSE(fs::exists(dir / "out3"));
 }
 
 }  // namespace
