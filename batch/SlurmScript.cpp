@@ -3,14 +3,11 @@
 #include <cstdint>
 
 namespace jawmesh {
-namespace {
-/// Single-quoted for sh, so any path is safe inside the script.
 std::string shellQuote(const std::string& s) {
     std::string q = "'";
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
 }
-}  // namespace
 
 std::string arraySpec(const std::vector<std::size_t>& indices) {
     std::string spec;

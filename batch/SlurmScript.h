@@ -16,6 +16,9 @@ struct SlurmOptions {
     int cpus = 2;           ///< --cpus-per-task, also the task's --threads
 };
 
+/// s single-quoted for sh (any path is then safe in a script or a command line).
+std::string shellQuote(const std::string& s);
+
 /// "0-3,5,7-8" for sorted, distinct indices (Slurm's --array syntax). Empty for none.
 std::string arraySpec(const std::vector<std::size_t>& indices);
 

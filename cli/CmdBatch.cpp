@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <thread>
 
@@ -99,7 +100,7 @@ void runLocal(const BatchArgs& args, const GlobalOptions& global) {
     const std::uint64_t available = availableMemoryBytes();
     local.memoryBudgetBytes = args.memoryGb > 0 ? static_cast<std::uint64_t>(args.memoryGb * 1e9)
                               : available > 0   ? static_cast<std::uint64_t>(kMemoryBudgetShare * static_cast<double>(available))
-                                                : UINT64_MAX;
+                                                : std::numeric_limits<std::uint64_t>::max();
     Progress& progress = terminalProgress(global);
     local.cancelled = [&progress] { return progress.cancelled(); };
     int done = static_cast<int>(m.tasks.size()) - pending;
@@ -132,7 +133,7 @@ void runLocal(const BatchArgs& args, const GlobalOptions& global) {
 
 /// Runs `sbatch --parsable script` and returns the job id.
 std::string submit(const std::string& script) {
-    const std::string command = "sbatch --parsable '" + script + "' 2>&1";
+    const std::string command = "sbatch --parsable " + shellQuote(script) + " 2>&1";
     FILE* pipe = ::popen(command.c_str(), "r");
     if (!pipe) throw Error(script, "cannot run sbatch");
     std::string output;
