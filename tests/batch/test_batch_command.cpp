@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <csignal>
 #include <sys/wait.h>
 #include <thread>
@@ -48,14 +49,26 @@ BatchRun batch(const fs::path& dataset, const fs::path& out, const fs::path& log
     return r;
 }
 
-/// path -> checksum of a finished task's files (from its completion stamp), run.json aside.
+/// The records that hold timings (run.json, report/report.json's "seconds"): equal runs differ there.
+const std::set<std::string> kTimedRecords = {"run.json", "report/report.json"};
+
+/// path -> checksum of a finished task's files (from its completion stamp), timed records aside.
 std::map<std::string, std::string> stampedFiles(const fs::path& jawDir) {
     std::ifstream in(jawDir / "outputs.json");
     const auto stamp = nlohmann::json::parse(in);
     std::map<std::string, std::string> files;
     for (const auto& f : stamp.at("files"))
-        if (f.at("path") != "run.json") files[f.at("path").get<std::string>()] = f.at("checksum").get<std::string>();
+        if (!kTimedRecords.count(f.at("path").get<std::string>()))
+            files[f.at("path").get<std::string>()] = f.at("checksum").get<std::string>();
     return files;
+}
+
+/// The evaluation report without its timing.
+nlohmann::json untimedReport(const fs::path& jawDir) {
+    std::ifstream in(jawDir / "report" / "report.json");
+    nlohmann::json report = nlohmann::json::parse(in);
+    report.erase("seconds");
+    return report;
 }
 
 void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
@@ -120,6 +133,12 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
         EXPECT_GT(r.estimatedMemoryBytes, 0u);
         EXPECT_TRUE(fs::exists(out / r.task.caseName / "mandible" / "volumetric_meshes" / "mandible.msh"));
     }
+    // Tasks run in a temporary folder that is renamed when complete: no output may name it.
+    for (const auto& e : fs::recursive_directory_iterator(out / "Patient_1" / "mandible")) {
+        if (e.is_regular_file()) {
+            EXPECT_EQ(readText(e.path()).find(".partial-"), std::string::npos) << e.path() << " names the temporary folder";
+        }
+    }
     const TaskRecord& broken = first.manifest.tasks[6];
     EXPECT_EQ(broken.task.caseName, "Patient_7");
     EXPECT_EQ(broken.status, TaskStatus::Failed);
@@ -146,6 +165,7 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
     // in flight dies with it, the manifest stays readable and the other outputs untouched.
     const fs::path damaged = out / "Patient_3" / "mandible";
     const auto before = stampedFiles(damaged);
+    const nlohmann::json reportBefore = untimedReport(damaged);
     fs::remove(damaged / "volumetric_meshes" / "mandible.msh");
     const int coordinator = startChild({kJawmesh, "batch", dataset.string(), "-o", out.string(), "--config", kConfig},
                                        (dir / "killed.log").string());
@@ -166,6 +186,7 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
         EXPECT_EQ(r.reused, r.task.caseName != "Patient_3") << r.task.caseName;
     }
     EXPECT_EQ(stampedFiles(damaged), before) << "the redone case's outputs equal the first run's";
+    EXPECT_EQ(untimedReport(damaged), reportBefore);
     EXPECT_FALSE(hasPartialFolders(out));
 
     // --status agrees; --slurm (without --submit) writes an array of the one task left to do.

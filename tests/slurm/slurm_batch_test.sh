@@ -4,8 +4,9 @@
 # (tests/batch/make_test_dataset.sh: 6 phantoms + 1 broken case) once locally and once as a Slurm
 # job array (`jawmesh batch --slurm --submit`), waits for the array with a bounded timeout, and
 # checks with `jawmesh batch --status` that the 6 cases are ok with outputs identical to the local
-# batch's (same files, sizes and checksums, run.json aside) and that the broken case is reported
-# with the reader's message. Everything it started is stopped at the end, also on failure.
+# batch's (same files, sizes and checksums; the timed records run.json and report.json's "seconds"
+# aside) and that the broken case is reported with the reader's message. Everything it started is
+# stopped at the end, also on failure.
 #   usage: tests/slurm/slurm_batch_test.sh [jawmesh binary (default build/cli/jawmesh)]
 # Needs root (slurmd runs jobs as root here) and the Debian packages slurmctld, slurmd, munge
 # (`bash quickstart.sh slurm-test` installs them and builds first). About 3-5 minutes on 2 cores.
@@ -143,15 +144,21 @@ assert failed == [("Patient_7", "mandible")], failed
 broken = st[("Patient_7", "mandible")]
 assert "mandible.stl" in broken["error"], broken["error"]
 assert broken["error"] == lt[("Patient_7", "mandible")]["error"], (broken["error"], lt[("Patient_7", "mandible")]["error"])
+timed = {"run.json", "report/report.json"}  # records with timings; report.json is compared without them
 for key in ok:
     t = st[key]
     assert t["log"] == "logs/slurm-%s_%d.log" % (job, list(st).index(key)), t["log"]
     assert os.path.getsize(os.path.join(slurm, t["log"])) > 0, t["log"]
-    files = []
+    files, reports = [], []
     for folder in (local, slurm):
-        stamp = json.load(open(os.path.join(folder, key[0], key[1], "outputs.json")))
-        files.append({f["path"]: (f["bytes"], f["checksum"]) for f in stamp["files"] if f["path"] != "run.json"})
+        jaw_dir = os.path.join(folder, key[0], key[1])
+        stamp = json.load(open(os.path.join(jaw_dir, "outputs.json")))
+        files.append({f["path"]: (f["bytes"], f["checksum"]) for f in stamp["files"] if f["path"] not in timed})
+        report = json.load(open(os.path.join(jaw_dir, "report", "report.json")))
+        report.pop("seconds")
+        reports.append(report)
     assert files[0] == files[1], "%s: outputs differ between the local and the Slurm batch" % (key,)
+    assert reports[0] == reports[1], "%s: evaluation reports differ" % (key,)
     assert any(p.endswith(".msh") for p in files[0]), files[0]
 print("slurm test: 6 cases ok with outputs identical to the local batch; broken case reported: " + broken["error"])
 PY
