@@ -34,6 +34,10 @@ std::string taskPartialDir(const std::string& outDir, const DatasetTask& task) {
            std::to_string(static_cast<long>(::getpid()));
 }
 
+std::string taskFailedSurfaceDir(const std::string& outDir, const DatasetTask& task) {
+    return outDir + "/" + task.caseName + "/" + task.jaw + ".failed_surface";
+}
+
 std::string taskResultPath(const std::string& outDir, const DatasetTask& task) {
     return outDir + "/tasks/" + fileStem(task) + ".json";
 }

@@ -5,6 +5,8 @@
 //   <case>/<jaw>/                  the task's outputs, as `jawmesh run <case> -o <out>/<case>` writes
 //                                  them, plus outputs.json (the completion stamp, batch/OutputStamp.h)
 //   <case>/.<jaw>.partial-<host>-<pid>/   a task in flight (renamed to <case>/<jaw> when complete)
+//   <case>/<jaw>.failed_surface/   the interface surface of a task whose TetGen step failed
+//                                  (kept for study; removed when the task later succeeds)
 //   tasks/<case>.<jaw>.json        a task's result record (written by the task itself)
 //   logs/<case>.<jaw>.log          a local task's progress and errors
 //   logs/slurm-<job>_<index>.log   a Slurm array task's output
@@ -25,6 +27,7 @@ std::string taskOutputDir(const std::string& outDir, const DatasetTask& task);
 /// A fresh in-flight folder name for the task, unique per host and process.
 std::string taskPartialDir(const std::string& outDir, const DatasetTask& task);
 std::string taskResultPath(const std::string& outDir, const DatasetTask& task);
+std::string taskFailedSurfaceDir(const std::string& outDir, const DatasetTask& task);
 std::string taskLogPath(const std::string& outDir, const DatasetTask& task);
 /// logs/<case>.<jaw>.log, relative to <out> (as recorded in the manifest).
 std::string taskLogRelativePath(const DatasetTask& task);

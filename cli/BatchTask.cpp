@@ -29,6 +29,22 @@ const JawCase& findJaw(const CaseInfo& info, const DatasetTask& task) {
     throw Error(task.caseDir, "has no " + task.jaw + " jaw any more (the dataset changed since the batch was planned)");
 }
 
+/// runJaw keeps the interface surface of a failed TetGen step in <partial>/failed_surface/ and
+/// names it in the message; the partial folder is about to go, so the surface moves to the task's
+/// failed-surface folder, and the message says where it now is.
+std::string keepFailedSurface(const std::string& partial, const std::string& keptDir, std::string message) {
+    namespace fs = std::filesystem;
+    const std::string from = partial + "/failed_surface";
+    std::error_code ec;
+    if (!fs::is_directory(from, ec)) return message;
+    fs::remove_all(keptDir, ec);
+    fs::rename(from, keptDir, ec);
+    if (ec) return message + " (could not keep it: " + ec.message() + ")";
+    for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + keptDir.size()))
+        message.replace(at, from.size(), keptDir);
+    return message;
+}
+
 }  // namespace
 
 void runBatchTask(const std::string& outDir, std::size_t index, Progress& progress) {
@@ -50,7 +66,8 @@ void runBatchTask(const std::string& outDir, std::size_t index, Progress& progre
     record.optionsHash = hash;
     record.log = taskLog(task);
     const std::string partial = taskPartialDir(outDir, task);
-    auto fail = [&](const std::string& message) {
+    auto fail = [&](std::string message) {
+        message = keepFailedSurface(partial, taskFailedSurfaceDir(outDir, task), message);
         std::error_code ec;
         std::filesystem::remove_all(partial, ec);
         record.status = TaskStatus::Failed;
@@ -70,6 +87,8 @@ void runBatchTask(const std::string& outDir, std::size_t index, Progress& progre
         stamp.files = stampFiles(partial);
         writeOutputStamp(stamp, partial);
         commitTaskOutput(partial, taskOutputDir(outDir, task));
+        std::error_code ec;
+        std::filesystem::remove_all(taskFailedSurfaceDir(outDir, task), ec);  // an earlier failure's
         record.status = TaskStatus::Ok;
         record.error.clear();
         record.seconds = stamp.seconds;

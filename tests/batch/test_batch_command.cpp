@@ -199,6 +199,25 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
     EXPECT_NE(script.find("#SBATCH --array=6\n"), std::string::npos) << script;
     EXPECT_NE(script.find("#SBATCH --mem=2G\n"), std::string::npos) << script;
 
+    // A TetGen failure (here: an invalid quality bound) keeps the interface surface for study
+    // beside the case's outputs, and the message names where it is.
+    const fs::path one = dir / "one", oneOut = dir / "one-out";
+    fs::create_directories(one);
+    fs::copy(dataset / "Patient_1", one / "Patient_1", fs::copy_options::recursive);
+    std::ifstream fastConfig(kConfig);
+    nlohmann::json badTet = nlohmann::json::parse(fastConfig);
+    badTet["tet_radius_edge"] = 0.5;
+    writeText(dir / "bad_tet.json", badTet.dump());
+    EXPECT_NE(exitCode(kJawmesh + " --quiet batch " + one.string() + " -o " + oneOut.string() + " --config " +
+                       (dir / "bad_tet.json").string()),
+              0);
+    const TaskRecord tetFailure = readManifest(oneOut.string()).tasks.at(0);
+    const fs::path kept = oneOut / "Patient_1" / "mandible.failed_surface" / "mandible.poly";
+    EXPECT_EQ(tetFailure.status, TaskStatus::Failed);
+    EXPECT_NE(tetFailure.error.find(kept.string()), std::string::npos) << tetFailure.error;
+    EXPECT_GT(fs::file_size(kept), 1000u);
+    EXPECT_FALSE(hasPartialFolders(oneOut));
+
     // Bad input is one clear error, and nothing is written.
     EXPECT_NE(exitCode(kJawmesh + " --quiet batch " + (dir / "missing").string() + " -o " + (dir / "out2").string() +
                        " 2> " + (dir / "err.txt").string()),
