@@ -2,6 +2,8 @@
 # jawmesh quick start. Run as root on Debian 12 (or with sudo available):
 #   bash quickstart.sh demo   install dependencies, build, mesh the synthetic jaw phantom -> out/demo
 #   bash quickstart.sh test   install dependencies, build, run every test (quick set, then slow set)
+#   bash quickstart.sh slurm-test   also install Slurm + munge, build, run the batch on a real
+#                                   single-node Slurm started on localhost (tests/slurm/)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -9,10 +11,12 @@ PACKAGES=(cmake make g++ pkg-config
   libopenvdb-dev libboost-iostreams-dev libboost-system-dev libtbb-dev libembree-dev libtet1.5-dev
   libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev python3-meshio
   calculix-ccx zlib1g-dev chromium)
+# Only for `slurm-test`: a real single-node Slurm on localhost.
+SLURM_PACKAGES=(slurmctld slurmd slurm-client munge python3)
 
 install_packages() {
   local missing=()
-  for p in "${PACKAGES[@]}"; do
+  for p in "${PACKAGES[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return
@@ -40,8 +44,13 @@ case "${1:-}" in
     ctest --test-dir build -L quick --output-on-failure -j "$(nproc)"
     ctest --test-dir build -L slow --output-on-failure
     ;;
+  slurm-test)
+    install_packages "${SLURM_PACKAGES[@]}"
+    build
+    bash tests/slurm/slurm_batch_test.sh build/cli/jawmesh
+    ;;
   *)
-    echo "usage: bash quickstart.sh demo|test" >&2
+    echo "usage: bash quickstart.sh demo|test|slurm-test" >&2
     exit 2
     ;;
 esac

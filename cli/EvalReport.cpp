@@ -104,6 +104,15 @@ JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& l
     throw Error(path, "the case has no " + jawName(jaw) + " input");
 }
 
+namespace {
+/// "<case folder> <jaw>": the end-of-run report names its input, not the folder it is written to
+/// (a batch writes into a temporary folder and renames it, so outputs must not depend on it).
+std::string caseTitle(const JawCase& jawCase) {
+    const fs::path bone = fs::absolute(jawCase.bonePath).lexically_normal();  // <case>/input/<jaw>/bone/<file>
+    return bone.parent_path().parent_path().parent_path().parent_path().filename().string() + " " + jawName(jawCase.jaw);
+}
+}  // namespace
+
 nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, double pdlTargetMm,
                          const std::string& outJawDir, Progress& progress) {
     const auto start = std::chrono::steady_clock::now();
@@ -111,10 +120,11 @@ nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const Load
         const JawSurfaces input = loadJaw(jawCase, load, progress);
         EvalOptions options;
         options.pdlTargetMm = pdlTargetMm;
-        const nlohmann::json report = writeEvalReport(mesh, &input, options, outJawDir + "/report", outJawDir, progress);
+        const nlohmann::json report =
+            writeEvalReport(mesh, &input, options, outJawDir + "/report", caseTitle(jawCase), progress);
         return {{"status", report["verdict"]["status"]},
                 {"line", report["verdict"]["line"]},
-                {"report", outJawDir + "/report/report.html"},
+                {"report", "report/report.html"},
                 {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
     } catch (const Error& e) {
         return {{"error", e.what()}};

@@ -26,9 +26,9 @@ nlohmann::json writeEvalReport(const TetMesh& mesh, const JawSurfaces* input, co
 /// neither or lacks that jaw, and whatever loadJaw() throws.
 JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& load = {}, Progress& progress = noProgress());
 
-/// End-of-run report: loads the jaw's input again (the run freed it), writes <outJawDir>/report/,
-/// and returns the short summary that goes into run.json ("eval": verdict status and line,
-/// seconds). Never throws Error: a failed report is returned as {"error": ...} so the validated
+/// End-of-run report: loads the jaw's input again (the run freed it), writes <outJawDir>/report/
+/// titled "<case folder> <jaw>", and returns the short summary that goes into run.json ("eval":
+/// verdict status and line, report path relative to outJawDir, seconds). Never throws Error: a failed report is returned as {"error": ...} so the validated
 /// mesh of the run stays the run's result. Throws Cancelled.
 nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, double pdlTargetMm,
                          const std::string& outJawDir, Progress& progress = noProgress());

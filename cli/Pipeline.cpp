@@ -20,6 +20,7 @@
 #include <openvdb/openvdb.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <set>
 
@@ -253,7 +254,9 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     // loaded still gets its mesh, with the reason in run.json.
     log.run(jaw + ": fe decks", progress, [&] {
         try {
-            for (const std::string& p : writeTippingDecks(mesh, caseAxes, outJawDir)) record["fe_decks"].push_back(p);
+            // Relative to the jaw folder: the folder may be renamed afterwards (a batch does).
+            for (const std::string& p : writeTippingDecks(mesh, caseAxes, outJawDir))
+                record["fe_decks"].push_back(std::filesystem::path(p).lexically_relative(outJawDir).generic_string());
         } catch (const Error& e) {
             record["warnings"].push_back(std::string("tipping decks not written: ") + e.what());
         }

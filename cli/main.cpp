@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const Cancelled& e) {
-        std::fprintf(stderr, "\njawmesh: %s; no output written\n", e.what());
+        std::fprintf(stderr, "\njawmesh: %s; no partial output written\n", e.what());
         return kExitCancelled;
     } catch (const Error& e) {
         std::fprintf(stderr, "jawmesh: error: %s\n", e.what());

@@ -1,0 +1,66 @@
+#include "batch/MemoryEstimate.h"
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+
+namespace jawmesh {
+namespace {
+constexpr double kBaseBytes = 150e6;
+constexpr double kBytesPerSurfaceVoxel = 1200.0;
+
+/// The first number in a file (cgroup files hold one number, or "max" for no limit).
+std::uint64_t readNumber(const std::string& path) {
+    std::ifstream in(path);
+    std::uint64_t value = 0;
+    if (!(in >> value)) return 0;
+    return value;
+}
+
+std::uint64_t memAvailableBytes() {
+    std::ifstream in("/proc/meminfo");
+    std::string key;
+    std::uint64_t kib = 0;
+    std::string unit;
+    while (in >> key >> kib >> unit)
+        if (key == "MemAvailable:") return kib * 1024u;
+    return 0;
+}
+
+/// Room left under this process's cgroup memory limit, or max when there is no limit.
+std::uint64_t cgroupRoomBytes() {
+    std::uint64_t room = std::numeric_limits<std::uint64_t>::max();
+    const std::uint64_t limitV2 = readNumber("/sys/fs/cgroup/memory.max");
+    if (limitV2 > 0) room = std::min(room, limitV2 - std::min(limitV2, readNumber("/sys/fs/cgroup/memory.current")));
+    const std::uint64_t limitV1 = readNumber("/sys/fs/cgroup/memory/memory.limit_in_bytes");
+    if (limitV1 > 0 && limitV1 < (1ull << 60))
+        room = std::min(room, limitV1 - std::min(limitV1, readNumber("/sys/fs/cgroup/memory/memory.usage_in_bytes")));
+    return room;
+}
+}  // namespace
+
+double surfaceAreaMm2(const SurfaceMesh& mesh) {
+    double area = 0;
+    for (const Tri& t : mesh.triangles) {
+        const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+        const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[1])];
+        const Vec3& c = mesh.vertices[static_cast<std::size_t>(t[2])];
+        area += 0.5 * (b - a).cross(c - a).norm();
+    }
+    return area;
+}
+
+std::uint64_t estimateRunMemoryBytes(double inputAreaMm2, double voxelMm) {
+    return static_cast<std::uint64_t>(kBaseBytes + kBytesPerSurfaceVoxel * inputAreaMm2 / (voxelMm * voxelMm));
+}
+
+std::uint64_t availableMemoryBytes() {
+    const std::uint64_t available = memAvailableBytes();
+    const std::uint64_t room = cgroupRoomBytes();
+    if (available == 0) return room == std::numeric_limits<std::uint64_t>::max() ? 0 : room;
+    return std::min(available, room);
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,30 @@
+// How much memory one jaw's run needs, estimated before running it, so that a batch starts a case
+// only when it fits beside the ones already running.
+//
+// The rule. A run's peak is set by its grids and surfaces at the level-set voxel size h: the
+// narrow bands, the label field and the raw interface surface (before simplification) all grow with
+// the number of voxels the surfaces cross, i.e. with the input surface area A over h^2. So
+//     estimate = 150 MB + 1,200 bytes x A / h^2            (A in mm^2, h in mm)
+// It stays above every measured peak (docs/BENCHMARKS.md, "Batch"): shared mandible at 0.05 mm
+// (A = 23,061 mm^2: 9.6 GB measured, 11.2 GB estimated), 2-tooth phantom at 0.05 mm (2,924 mm^2:
+// 1.3 GB, 1.55 GB), 1-tooth phantom at 0.1 and 0.2 mm (2,543 mm^2: 195 and 106 MB; 455 and 226 MB).
+// Reading the surfaces to get A costs about a second per million triangles.
+#pragma once
+
+#include "io/SurfaceMesh.h"
+
+#include <cstdint>
+
+namespace jawmesh {
+
+/// Total triangle area, mm^2 (a triangle soup's duplicated faces count twice).
+double surfaceAreaMm2(const SurfaceMesh& mesh);
+
+/// The rule above, in bytes. voxelMm must be > 0.
+std::uint64_t estimateRunMemoryBytes(double inputAreaMm2, double voxelMm);
+
+/// Memory the batch may use now, bytes: /proc/meminfo MemAvailable, capped by the cgroup (v2 or v1)
+/// limit minus its current use when one is set. 0 when neither can be read.
+std::uint64_t availableMemoryBytes();
+
+}  // namespace jawmesh
