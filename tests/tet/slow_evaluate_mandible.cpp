@@ -7,6 +7,7 @@
 //    tooth distances and PDL thicknesses against brute force on random area samples. A full run of
 //    the mandible takes far longer than a test may (carving ~7 min, interface surface ~20 min and
 //    TetGen on 1.2 M triangles on 2 cores), so the test does not make one; it skips without it.
+#include "support/BruteForceDistance.h"
 #include "filters/SurfaceDistance.h"
 #include "io/Case.h"
 #include "io/GmshReader.h"
@@ -27,27 +28,6 @@ using namespace jawmesh::test;
 
 namespace {
 
-using Triangle = std::array<Vec3, 3>;
-
-/// Point-triangle distance written for this test (plane projection, else nearest edge).
-double distanceToTriangle(const Vec3& p, const Triangle& t) {
-    const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
-    const double n2 = n.squaredNorm();
-    if (n2 > 0) {
-        const Vec3 q = p - n * ((p - t[0]).dot(n) / n2);
-        bool inside = true;
-        for (int k = 0; k < 3; ++k) inside = inside && (t[(k + 1) % 3] - t[k]).cross(q - t[k]).dot(n) >= 0;
-        if (inside) return (p - q).norm();
-    }
-    double best = INFINITY;
-    for (int k = 0; k < 3; ++k) {
-        const Vec3 a = t[k], b = t[(k + 1) % 3];
-        const double len2 = (b - a).squaredNorm();
-        const double s = len2 > 0 ? std::clamp((p - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
-        best = std::min(best, (p - (a + s * (b - a))).norm());
-    }
-    return best;
-}
 
 std::vector<Triangle> triangles(const SurfaceMesh& s) {
     std::vector<Triangle> out;

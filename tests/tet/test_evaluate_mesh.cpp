@@ -2,6 +2,7 @@
 // a face map of our own, distances by brute force over every triangle with a point-triangle
 // distance written here, random area samples for means and percentiles; plus the values known
 // by construction (tests/support/SyntheticJaw.h). Report numbers must match within 1% or 0.005 mm.
+#include "support/BruteForceDistance.h"
 #include "support/SyntheticJaw.h"
 #include "tet/EvaluateMesh.h"
 
@@ -19,29 +20,6 @@ using namespace jawmesh::test;
 
 namespace {
 
-using Triangle = std::array<Vec3, 3>;
-
-/// Distance from p to a triangle: the plane distance when the projection is inside, else the
-/// nearest of the three edges (deliberately not the production code's Voronoi-region method).
-double distanceToTriangle(const Vec3& p, const Triangle& t) {
-    const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
-    const double n2 = n.squaredNorm();
-    if (n2 > 0) {
-        const Vec3 q = p - n * ((p - t[0]).dot(n) / n2);
-        bool inside = true;
-        for (int k = 0; k < 3; ++k)
-            inside = inside && (t[(k + 1) % 3] - t[k]).cross(q - t[k]).dot(n) >= 0;
-        if (inside) return (p - q).norm();
-    }
-    double best = INFINITY;
-    for (int k = 0; k < 3; ++k) {
-        const Vec3 a = t[k], b = t[(k + 1) % 3];
-        const double len2 = (b - a).squaredNorm();
-        const double s = len2 > 0 ? std::clamp((p - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
-        best = std::min(best, (p - (a + s * (b - a))).norm());
-    }
-    return best;
-}
 
 struct Nearest {
     double distance;
