@@ -34,9 +34,7 @@ int main(int argc, char** argv) {
     std::map<std::int32_t, int> interfaceFacesOf;
     for (std::size_t g = 0; g < adj.groupCount(); ++g) {
         const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
-        const bool inner = adj.groupSize(g) == 2 &&
-                           mesh.labels[std::size_t(f0.tet)] == mesh.labels[std::size_t(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet)];
-        if (inner) continue;
+        if (jawmesh::insideOneRegion(adj, mesh, g)) continue;
         onInterface.insert(f0.key.begin(), f0.key.end());
         for (std::size_t i = std::size_t(adj.groupStart[g]); i < std::size_t(adj.groupStart[g + 1]); ++i) interfaceFacesOf[adj.faces[i].tet]++;
     }

@@ -65,9 +65,7 @@ public:
         const TetFaceAdjacency adj = tetFaceAdjacency(m);
         for (std::size_t g = 0; g < adj.groupCount(); ++g) {
             const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
-            const bool shared = adj.groupSize(g) == 2 &&
-                                m.labels[std::size_t(f0.tet)] == m.labels[std::size_t(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet)];
-            if (!shared)
+            if (!insideOneRegion(adj, m, g))
                 for (auto v : f0.key) fixed_[std::size_t(v)] = 1;
         }
     }

@@ -38,6 +38,15 @@ inline std::array<std::int32_t, 3> outwardFace(const Tet& t, int local) {
     return {t[static_cast<std::size_t>(f[0])], t[static_cast<std::size_t>(f[1])], t[static_cast<std::size_t>(f[2])]};
 }
 
+/// True when face group g lies inside one region: shared by two tets of the same label (not an
+/// interface, not on the outside).
+inline bool insideOneRegion(const TetFaceAdjacency& adj, const TetMesh& mesh, std::size_t g) {
+    if (adj.groupSize(g) != 2) return false;
+    const auto first = static_cast<std::size_t>(adj.groupStart[g]);
+    return mesh.labels[static_cast<std::size_t>(adj.faces[first].tet)] ==
+           mesh.labels[static_cast<std::size_t>(adj.faces[first + 1].tet)];
+}
+
 /// Builds the face adjacency of `mesh`.
 /// Node indices are not range-checked (validateTetMesh does that first).
 /// Cost: O(T log T) with a parallel sort of 4T entries (T = tet count; ~0.5 s for 1 M tets on two

@@ -31,8 +31,7 @@ std::set<std::array<std::int32_t, 3>> interfaceFaces(const TetMesh& m) {
     const TetFaceAdjacency adj = tetFaceAdjacency(m);
     for (std::size_t g = 0; g < adj.groupCount(); ++g) {
         const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
-        if (adj.groupSize(g) == 2 && m.labels[std::size_t(f0.tet)] == m.labels[std::size_t(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet)])
-            continue;
+        if (insideOneRegion(adj, m, g)) continue;
         out.insert(f0.key);
     }
     return out;
