@@ -62,7 +62,8 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
                                     {"bone_error_mm", opt.simplify.boneErrorMm},
                                     {"bone_far_error_mm", opt.simplify.boneFarErrorMm},
                                     {"bone_near_teeth_mm", opt.simplify.boneNearTeethMm},
-                                    {"min_angle_deg", opt.simplify.minAngleDeg}};
+                                    {"min_angle_deg", opt.simplify.minAngleDeg},
+                                    {"min_wedge_deg", opt.simplify.minWedgeDeg}};
     }
     writeFileAtomically(opt.output + "/surface.json", [&](std::ostream& os) { os << j.dump(2) << "\n"; }, false);
     if (opt.json) std::cout << j.dump() << std::endl;
@@ -90,6 +91,9 @@ void addSurfaceCommand(CLI::App& app, GlobalOptions& global) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--min-angle", opt->simplify.minAngleDeg, "Smallest angle a collapse may create, degrees (default 15)")
         ->check(CLI::Range(0.0, 59.0));
+    cmd->add_option("--min-wedge", opt->simplify.minWedgeDeg,
+                    "Smallest angle a region may come to span around an edge, degrees (default 20; 0 = off)")
+        ->check(CLI::Range(0.0, 89.0));
     cmd->add_flag("!--no-simplify", opt->simplifyOn, "Write the raw extraction");
     cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");
     cmd->callback([opt, &global] { runSurface(*opt, global); });

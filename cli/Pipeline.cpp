@@ -91,6 +91,7 @@ nlohmann::json runOptionsToJson(const RunOptions& o) {
         {"surface_bone_far_error_mm", o.simplify.boneFarErrorMm},
         {"surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm},
         {"surface_min_angle_deg", o.simplify.minAngleDeg},
+        {"surface_min_wedge_deg", o.simplify.minWedgeDeg},
         {"tet_radius_edge", o.tet.radiusEdgeRatio},
         {"tet_min_dihedral_deg", o.tet.minDihedralDeg},
         {"tet_pdl_edge_mm", o.tet.pdlEdgeMm},
@@ -130,6 +131,7 @@ void applyRunConfig(const std::string& path, RunOptions& o) {
         readKey(j, "surface_bone_far_error_mm", o.simplify.boneFarErrorMm);
         readKey(j, "surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm);
         readKey(j, "surface_min_angle_deg", o.simplify.minAngleDeg);
+        readKey(j, "surface_min_wedge_deg", o.simplify.minWedgeDeg);
         readKey(j, "tet_radius_edge", o.tet.radiusEdgeRatio);
         readKey(j, "tet_min_dihedral_deg", o.tet.minDihedralDeg);
         readKey(j, "tet_pdl_edge_mm", o.tet.pdlEdgeMm);

@@ -1,6 +1,7 @@
 #include "filters/SimplifyInterfaces.h"
 
 #include "filters/NearTeeth.h"
+#include "filters/RegionWedges.h"
 
 #include "filters/SelfIntersections.h"
 #include "filters/SplitCorners.h"
@@ -498,6 +499,13 @@ private:
                 if (!isApex(x) && (pos_[std::size_t(x)] - pv).norm() > maxEdge) return false;
         }
 
+        // Wedges: no region may come to span less than minWedgeDeg around an edge (RegionWedges.h),
+        // unless it already did as little around u.
+        if (opt_.minWedgeDeg > 0) {
+            const double after = smallestWedge(u, v, /*post=*/true);
+            if (after < opt_.minWedgeDeg && after < smallestWedge(u, v, /*post=*/false)) return false;
+        }
+
         // Curve error: u and the points of u's two curve edges stay near the merged edge v-w.
         if (other) {
             double bound = std::numeric_limits<double>::infinity();
@@ -643,6 +651,53 @@ private:
         return true;
     }
 
+    /// Smallest region wedge over the edges of u's triangles as they are (post = false), or of the
+    /// moved triangles after the collapse u -> v that evaluate() is checking (post = true: moved_,
+    /// newTris_ filled, u-v's own triangles gone).
+    double smallestWedge(std::int32_t u, std::int32_t v, bool post) {
+        const auto removedTri = [&](std::int32_t t) {
+            return post && std::find(moved_.begin(), moved_.end(), t) == moved_.end() &&
+                   std::find(vtris_[std::size_t(u)].begin(), vtris_[std::size_t(u)].end(), t) !=
+                       vtris_[std::size_t(u)].end();
+        };
+        const auto cornersOf = [&](std::int32_t t) -> Tri {
+            if (post) {
+                const auto it = std::find(moved_.begin(), moved_.end(), t);
+                if (it != moved_.end()) return newTris_[std::size_t(it - moved_.begin())];
+            }
+            return tri_[std::size_t(t)];
+        };
+        const std::int32_t centre = post ? v : u;
+        double smallest = 360;
+        const auto& tris = post ? moved_ : vtris_[std::size_t(u)];
+        for (std::size_t i = 0; i < tris.size(); ++i) {
+            const Tri f = post ? newTris_[i] : tri_[std::size_t(tris[i])];
+            for (int k = 0; k < 3; ++k) {
+                const std::int32_t a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
+                // Every triangle on a-b holds its endpoint other than the centre, whose list is
+                // up to date except for the collapse being checked.
+                const std::int32_t hub = a == centre ? b : a;
+                wedgeFan_.clear();
+                for (std::int32_t t : vtris_[std::size_t(hub)]) {
+                    if (removedTri(t)) continue;
+                    const Tri g = cornersOf(t);
+                    int ia = -1, ib = -1;
+                    for (int j = 0; j < 3; ++j) {
+                        if (g[std::size_t(j)] == a) ia = j;
+                        if (g[std::size_t(j)] == b) ib = j;
+                    }
+                    if (ia < 0 || ib < 0) continue;
+                    const std::int32_t c = g[std::size_t(3 - ia - ib)];
+                    wedgeFan_.push_back({pos_[std::size_t(c)], sides_[std::size_t(t)][0], sides_[std::size_t(t)][1],
+                                         (ia + 1) % 3 == ib});
+                }
+                smallest = std::min(smallest, smallestRegionWedgeDeg(pos_[std::size_t(a)], pos_[std::size_t(b)],
+                                                                     wedgeFan_.data(), wedgeFan_.size()));
+            }
+        }
+        return smallest;
+    }
+
     /// Makes the collapse u -> v that evaluate(u, v, &plan) accepted just before.
     void apply(std::int32_t u, std::int32_t v, const Plan& plan) {
         for (std::int32_t t : plan.removed) {
@@ -749,6 +804,7 @@ private:
     std::vector<int> pairsDone_;
     std::vector<std::array<Vec3, 3>> newCorners_;
     std::vector<Tri> newTris_;
+    std::vector<EdgeFanTriangle> wedgeFan_;
     std::vector<std::pair<double, std::int32_t>> costs_;
     Plan plan_, scratchPlan_;
 };
@@ -768,7 +824,9 @@ nlohmann::json toJson(const SimplifyStats& s) {
              {{"bins_deg", {0, 5, 10, 15, 20, 30, 40, 60}}, {"triangles", s.minAngleHistogram}}},
             {"seconds", s.seconds},
             {"exhaustive_rerun", s.exhaustiveRerun},
-            {"corner_splits", s.cornerSplits}};
+            {"corner_splits", s.cornerSplits},
+            {"min_wedge_deg", s.minWedgeDeg},
+            {"edges_below_min_wedge", s.edgesBelowMinWedge}};
 }
 
 std::string interfaceKind(Label a, Label b) {
@@ -915,6 +973,8 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
         throw Error("simplification: minimum angle must be in [0, 60) degrees");
     if (!(options.maxNormalTurnDeg > 0 && options.maxNormalTurnDeg <= 180))
         throw Error("simplification: maximum normal turn must be in (0, 180] degrees");
+    if (!(options.minWedgeDeg >= 0 && options.minWedgeDeg < 90))
+        throw Error("simplification: minimum region wedge must be in [0, 90) degrees");
     if (!(options.blockMm >= 0)) throw Error("simplification: block size must be >= 0");
     const std::size_t nv = input.surface.vertices.size();
     for (const Tri& f : input.surface.triangles)
@@ -997,6 +1057,9 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
         s.minAngleHistogram[std::size_t(std::upper_bound(std::begin(bins), std::end(bins), a) - std::begin(bins))]++;
         s.trianglesPerKind[interfaceKind(out.sides[t][0], out.sides[t][1])]++;
     }
+    const RegionWedgeStats wedges = measureRegionWedges(out, options.minWedgeDeg);
+    s.minWedgeDeg = wedges.smallestDeg;
+    s.edgesBelowMinWedge = wedges.edgesBelow;
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

@@ -17,7 +17,8 @@
 //    output).
 //  - quality: no new triangle has an angle below minAngleDeg unless it replaces a triangle that
 //    was already worse, no normal turns by more than maxNormalTurnDeg, no new edge is longer than
-//    the interface's maximum edge.
+//    the interface's maximum edge, and no region comes to span less than minWedgeDeg around an
+//    edge (RegionWedges.h: such a wedge caps the dihedral angles of every tet in it).
 //  - intersections: each new triangle is tested exactly (filters/SelfIntersections.h predicates)
 //    against the triangles around the collapse; the whole output is then checked (Embree broad
 //    phase, exact predicates) and, if two sheets met elsewhere, everything is redone testing each
@@ -52,6 +53,10 @@ struct SimplifyOptions {
     /// tet/ImproveSlivers.h; below ~15 the tets on thin triangles stay slivers.
     double minAngleDeg = 15.0;
     double maxNormalTurnDeg = 60.0;
+    /// Smallest angle a region (not the outside) may come to span around an edge (RegionWedges.h):
+    /// the tets there can be no better. Collapses may not create a smaller one, nor shrink one
+    /// that was already smaller. 0 = off.
+    double minWedgeDeg = 20.0;
     /// Parallel passes over cubic blocks of this edge (border vertices frozen, then blocks shifted
     /// by half), then one serial pass over everything; 0 = the serial pass only. The result does
     /// not depend on the thread count.
@@ -77,7 +82,9 @@ struct SimplifyStats {
     std::array<std::size_t, 7> minAngleHistogram{};
     double seconds = 0;
     bool exhaustiveRerun = false;  ///< the local intersection test missed one: redone exhaustively
-    std::size_t cornerSplits = 0;  ///< edges split so no region has a 3-triangle corner (SplitCorners.h)
+    std::size_t cornerSplits = 0;
+    double minWedgeDeg = 360;         ///< smallest region wedge of the output (RegionWedges.h)
+    std::size_t edgesBelowMinWedge = 0; ///< output edges with a wedge under SimplifyOptions::minWedgeDeg  ///< edges split so no region has a 3-triangle corner (SplitCorners.h)
 };
 
 /// The stats as recorded in run.json and `jawmesh surface --json`.

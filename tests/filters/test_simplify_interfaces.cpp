@@ -2,6 +2,7 @@
 // closed, manifold, of the same topology, within the error bound, intersection-free; deterministic.
 #include "filters/ExtractInterfaces.h"
 #include "filters/NearTeeth.h"
+#include "filters/RegionWedges.h"
 #include "filters/SelfIntersections.h"
 #include "filters/SimplifyInterfaces.h"
 #include "filters/TriangleGeometry.h"
@@ -174,6 +175,21 @@ TEST(SimplifyInterfaces, CapKeepsThreeTrianglesAcrossThePdl) {
     EXPECT_LT(coarse, 0.2 / 2.5);
 }
 
+TEST(SimplifyInterfaces, NoRegionComesToSpanAThinWedge) {
+    // A wedge under minWedgeDeg caps the dihedral angles of every tet in it: collapses never make
+    // the smallest one smaller than the input's or the option's, whichever is less.
+    const auto& s = phantom();
+    const double bound = phantomOptions().minWedgeDeg;
+    const RegionWedgeStats fine = measureRegionWedges(s.fine, bound);
+    const RegionWedgeStats coarse = measureRegionWedges(s.coarse, bound);
+    std::printf("smallest region wedge: fine %.2f deg (%zu edges under %.0f), simplified %.2f deg (%zu)\n",
+                fine.smallestDeg, fine.edgesBelow, bound, coarse.smallestDeg, coarse.edgesBelow);
+    EXPECT_GE(coarse.smallestDeg, std::min(bound, fine.smallestDeg) - 1e-9);
+    EXPECT_LE(coarse.edgesBelow, fine.edgesBelow);
+    EXPECT_DOUBLE_EQ(s.stats.minWedgeDeg, coarse.smallestDeg);
+    EXPECT_EQ(s.stats.edgesBelowMinWedge, coarse.edgesBelow);
+}
+
 TEST(SimplifyInterfaces, DeterministicAndRejectsBadOptions) {
     const auto& s = phantom();
     const InterfaceComplex again = simplifyInterfaces(s.fine, phantomOptions());
@@ -181,6 +197,9 @@ TEST(SimplifyInterfaces, DeterministicAndRejectsBadOptions) {
     EXPECT_EQ(again.surface.vertices, s.coarse.surface.vertices);
     SimplifyOptions bad;
     bad.minAngleDeg = 75;
+    EXPECT_THROW(simplifyInterfaces(s.fine, bad), Error);
+    bad = SimplifyOptions{};
+    bad.minWedgeDeg = 95;
     EXPECT_THROW(simplifyInterfaces(s.fine, bad), Error);
     bad = SimplifyOptions{};
     bad.toothErrorMm = -1;

@@ -1,0 +1,34 @@
+// The angle a region spans around an interface edge (its "wedge"). Every tetrahedron of that region
+// at the edge has a dihedral angle no larger than the wedge there, and TetGen with -Y cannot split the
+// edge, so a wedge under the mesh's minimum dihedral angle can never be meshed well. The
+// simplification refuses to create such wedges; the stats and tests measure them.
+#pragma once
+
+#include "io/InterfaceComplex.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace jawmesh {
+
+/// One triangle around an edge a-b, as the wedge computation needs it.
+struct EdgeFanTriangle {
+    Vec3 apex;          ///< the triangle's third vertex
+    Label front, back;  ///< sides[0] (into which its normal points) and sides[1]
+    bool aThenB;        ///< the triangle's vertex order runs a -> b (else b -> a)
+};
+
+/// Smallest angle, degrees, spanned between two consecutive triangles around the edge a-b by a region
+/// other than the outside; 360 when there is none. Pairs whose facing labels disagree (a fan seen
+/// only in part, e.g. at a block border) are skipped.
+double smallestRegionWedgeDeg(const Vec3& a, const Vec3& b, const EdgeFanTriangle* fan, std::size_t n);
+
+struct RegionWedgeStats {
+    double smallestDeg = 360;  ///< over every edge and region but the outside
+    std::size_t edgesBelow = 0;  ///< edges with a wedge under the threshold asked for
+};
+
+/// Wedges of every edge of the complex (each edge once).
+RegionWedgeStats measureRegionWedges(const InterfaceComplex& complex, double thresholdDeg);
+
+}  // namespace jawmesh
