@@ -24,9 +24,9 @@ int main(int argc, char** argv) {
     jawmesh::improveSlivers(mesh, o, &s);
     const jawmesh::ValidationReport r = jawmesh::validateTetMesh(mesh, {});
     std::printf("| %s | below %.0f deg: %zu -> %zu | min dihedral %.2f -> %.2f deg | smoothed %zu, 2-3 %zu, 3-2 %zu, removals %zu, "
-                "splits %zu+%zu, %d passes | %.1f s | violations %zu, interface faces %s |\n",
+                "splits %zu+%zu, stars %zu, %d passes | %.1f s | violations %zu, interface faces %s |\n",
                 argv[1], o.targetMinDihedralDeg, s.badBefore, s.badAfter, s.minDihedralBeforeDeg, s.minDihedralAfterDeg,
-                s.smoothed, s.flips23, s.flips32, s.edgeRemovals, s.splits, s.faceSplits, s.passes, s.seconds, r.violationCount(),
+                s.smoothed, s.flips23, s.flips32, s.edgeRemovals, s.splits, s.faceSplits, s.cavityStars, s.passes, s.seconds, r.violationCount(),
                 r.interfaceFacesPerPair == before.interfaceFacesPerPair ? "kept" : "CHANGED");
     // What is left: per remaining bad tet, how many of its nodes and faces lie on an interface.
     const jawmesh::TetFaceAdjacency adj = jawmesh::tetFaceAdjacency(mesh);

@@ -232,6 +232,8 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
                           {"flips23", sl.flips23},
                           {"flips32", sl.flips32},
                           {"splits", sl.splits},
+                          {"face_splits", sl.faceSplits},
+                          {"cavity_stars", sl.cavityStars},
                           {"seconds", sl.seconds}}}};
 
     const ValidationReport report =

@@ -2,6 +2,7 @@
 
 #include "filters/LabelEdges.h"
 #include "filters/RegionSeeds.h"
+#include "filters/FillEnclosedOutside.h"
 #include "filters/WellComposedLabels.h"
 #include "io/Error.h"
 
@@ -49,6 +50,26 @@ constexpr int kCellEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3
 
 }  // namespace
 
+openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOptions& options, Progress& progress) {
+    if (!field.labels) throw Error("interface extraction: the label field has no label grid");
+    openvdb::Int32Grid::Ptr labels = field.labels->deepCopy();
+    const double voxelMm = labels->voxelSize()[0];
+    const auto maxPocketVoxels =
+        std::size_t(std::max(0.0, options.maxEnclosedOutsideMm3) / (voxelMm * voxelMm * voxelMm));
+    if (maxPocketVoxels > 0) fillEnclosedOutside(*labels, maxPocketVoxels);
+    if (options.repairDiagonalContacts) {
+        // The repair raises voxels to higher-priority regions, which can close new pockets.
+        for (int round = 0;; ++round) {
+            const std::size_t relabelled = makeLabelsWellComposed(*labels, field.distances, progress);
+            if (relabelled == 0 || maxPocketVoxels == 0 || round == 3) break;
+            if (fillEnclosedOutside(*labels, maxPocketVoxels).pockets == 0) break;
+        }
+    } else if (countCriticalCells(*labels, field.distances) > 0) {
+        throw Error("interface extraction: the label field has diagonal-only contacts");
+    }
+    return labels;
+}
+
 InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions& options,
                                    Progress& progress) {
     if (!field.labels) throw Error("interface extraction: the label field has no label grid");
@@ -56,11 +77,7 @@ InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions
         throw Error("interface extraction: the label grid's transform is not linear");
     ProgressStage stage(progress, "interface extraction");
 
-    openvdb::Int32Grid::Ptr labels = field.labels->deepCopy();
-    if (options.repairDiagonalContacts)
-        makeLabelsWellComposed(*labels, field.distances, progress);
-    else if (countCriticalCells(*labels, field.distances) > 0)
-        throw Error("interface extraction: the label field has diagonal-only contacts");
+    openvdb::Int32Grid::Ptr labels = labelsToExtract(field, options, progress);
     stage.update(0.3);
 
     const std::vector<LabelEdge> edges = findLabelEdges(*labels, field.distances);

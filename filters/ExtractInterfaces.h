@@ -28,10 +28,20 @@ struct ExtractOptions {
     /// Join diagonal-only contacts first (see WellComposedLabels.h). When false the labels must
     /// already be well-composed, otherwise Error is thrown.
     bool repairDiagonalContacts = true;
+    /// Pockets of outside enclosed by the jaw and smaller than this (mm^3) are filled with the
+    /// region around them first (FillEnclosedOutside.h); 0 = keep them.
+    double maxEnclosedOutsideMm3 = 1.0;
     /// Find one seed per region component (findRegionSeeds). Off when the caller places seeds
     /// itself, as simplification does (filters/ShellSeeds.h): the segmentation is then wasted.
     bool findSeeds = true;
 };
+
+/// The labels extraction meshes: a copy of field.labels with small enclosed outside pockets filled
+/// (FillEnclosedOutside.h) and diagonal-only contacts repaired (WellComposedLabels.h), as the
+/// options ask. Throws Error when field.labels is missing, or has diagonal contacts and the repair
+/// is off.
+openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOptions& options = {},
+                                        Progress& progress = noProgress());
 
 /// Extracts the interface complex of `field`: surface, label pair per triangle (sides[t][0] is the
 /// smaller label, so normals point out of the higher label: into the outside, out of teeth into

@@ -53,6 +53,15 @@ struct Objective {
 
 double signedVolume6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).dot((c - a).cross(d - a)); }
 
+/// q strictly inside the circumsphere of the tet a, b, c, d (false for a degenerate tet).
+bool insideCircumsphere(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& q) {
+    const Vec3 u = b - a, v = c - a, w = d - a;
+    const double det = 2 * u.dot(v.cross(w));
+    if (det == 0) return false;
+    const Vec3 centre = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / det;
+    return (q - a - centre).squaredNorm() < centre.squaredNorm();
+}
+
 class SliverImprover {
 public:
     SliverImprover(TetMesh& m, const SliverOptions& o) : m_(m), target_(-std::cos(o.targetMinDihedralDeg * M_PI / 180.0)) {
@@ -99,7 +108,7 @@ public:
                 return true;
             }
         if (flip23Around(t, st) || removeEdgeAround(t, st)) return true;
-        return splitAround(t, st) || splitFaceAround(t, st);
+        return splitAround(t, st) || splitFaceAround(t, st) || starCavityAround(t, st);
     }
 
     void compact() {
@@ -462,6 +471,144 @@ private:
             return true;
         }
         return false;
+    }
+
+    /// Inserts a vertex near t, Bowyer-Watson style inside t's region: the tets of the region
+    /// connected to t whose circumsphere holds the new vertex are replaced by its star over their
+    /// outer faces. This is what a flat tet lying on two boundary faces at a ridge needs: a vertex
+    /// above the ridge, which no split of a single edge or face can reach. Starts: t's centroid and
+    /// points above each of t's boundary edges shared by two boundary faces.
+    bool starCavityAround(std::int32_t t, SliverStats& st) {
+        const Tet e = m_.tets[std::size_t(t)];
+        std::vector<Vec3> starts;
+        starts.push_back(0.25 * (P(e[0]) + P(e[1]) + P(e[2]) + P(e[3])));
+        // Faces of t on the region's boundary, with their normals pointing out of t.
+        std::vector<std::pair<int, Vec3>> boundary;
+        for (int k = 0; k < 4; ++k) {
+            std::int32_t f[3];
+            if (sameRegionNeighbour(t, k, f) >= 0) continue;
+            const Vec3 n = (P(f[1]) - P(f[0])).cross(P(f[2]) - P(f[0]));
+            const Vec3 out = (P(f[0]) - P(e[std::size_t(k)])).dot(n) > 0 ? n : Vec3(-n);
+            boundary.emplace_back(k, out.normalized());
+        }
+        for (std::size_t i = 0; i < boundary.size(); ++i)
+            for (std::size_t j = i + 1; j < boundary.size(); ++j) {
+                // the edge shared by the faces opposite vertices k1 and k2: the other two vertices
+                const int k1 = boundary[i].first, k2 = boundary[j].first;
+                Vec3 a = Vec3::Zero();
+                for (int v = 0; v < 4; ++v)
+                    if (v != k1 && v != k2) a += 0.5 * P(e[std::size_t(v)]);
+                const Vec3 in = -(boundary[i].second + boundary[j].second).normalized();
+                const double len = (P(e[std::size_t(k1)]) - P(e[std::size_t(k2)])).norm();
+                for (double h : {0.15, 0.3, 0.45, 0.6, 0.9}) starts.push_back(a + h * len * in);
+            }
+        const Objective before = objectiveOf({t});
+        for (const Vec3& q : starts) {
+            std::vector<std::int32_t> cavity = circumsphereCavity(t, q);
+            if (!growUntilStarShaped(cavity, q)) continue;
+            std::vector<Tet> tets = starOfCavity(cavity);
+            const auto m = std::int32_t(m_.nodes.size());
+            m_.nodes.push_back(q);
+            for (Tet& x : tets)
+                for (auto& v : x)
+                    if (v < 0) v = m;
+            const auto [p, after] = bestPosition(tets, m, q);
+            if (!after.betterThan(objectiveOf(cavity)) || !after.betterThan(before)) {
+                m_.nodes.pop_back();
+                continue;
+            }
+            m_.nodes.back() = p;
+            commitNewVertex(cavity, tets, m_.labels[std::size_t(t)]);
+            ++st.cavityStars;
+            return true;
+        }
+        return false;
+    }
+
+    /// t and the tets of its region connected to it through faces whose circumsphere holds q
+    /// (at most 64 tets).
+    std::vector<std::int32_t> circumsphereCavity(std::int32_t t, const Vec3& q) const {
+        std::vector<std::int32_t> cavity{t};
+        for (std::size_t i = 0; i < cavity.size() && cavity.size() < 64; ++i)
+            for (int k = 0; k < 4; ++k) {
+                std::int32_t f[3];
+                const std::int32_t s = sameRegionNeighbour(cavity[i], k, f);
+                if (s < 0 || std::find(cavity.begin(), cavity.end(), s) != cavity.end()) continue;
+                const Tet& g = m_.tets[std::size_t(s)];
+                if (insideCircumsphere(P(g[0]), P(g[1]), P(g[2]), P(g[3]), q)) cavity.push_back(s);
+            }
+        return cavity;
+    }
+
+    /// Adds to `cavity` the region's tets behind every outer face that q does not see from inside,
+    /// until q sees them all (true) or such a face is on the region's boundary or the cavity grows
+    /// past 64 tets (false). TetGen's output is not Delaunay after improvement, so the
+    /// circumsphere cavity alone is not always star-shaped.
+    bool growUntilStarShaped(std::vector<std::int32_t>& cavity, const Vec3& q) const {
+        while (cavity.size() <= 64) {
+            bool grown = false;
+            const std::vector<Tet> star = starOfCavity(cavity);
+            for (const Tet& x : star) {
+                const Vec3* p[4];
+                int hole = 0;
+                for (int k = 0; k < 4; ++k) {
+                    if (x[std::size_t(k)] < 0) hole = k;
+                    p[k] = x[std::size_t(k)] < 0 ? &q : &P(x[std::size_t(k)]);
+                }
+                if (signedVolume6(*p[0], *p[1], *p[2], *p[3]) > 0) continue;
+                // the cavity tet this face belongs to, and the tet behind the face
+                std::int32_t f[3];
+                int n = 0;
+                for (int k = 0; k < 4; ++k)
+                    if (k != hole) f[n++] = x[std::size_t(k)];
+                std::int32_t behind = -1;
+                for (auto c : cavity) {
+                    const Tet& g = m_.tets[std::size_t(c)];
+                    int opposite = -1, shared = 0;
+                    for (int k = 0; k < 4; ++k) {
+                        if (std::find(f, f + 3, g[std::size_t(k)]) != f + 3) ++shared;
+                        else opposite = k;
+                    }
+                    if (shared != 3) continue;
+                    std::int32_t face[3];
+                    behind = sameRegionNeighbour(c, opposite, face);
+                    break;
+                }
+                if (behind < 0) return false;
+                if (std::find(cavity.begin(), cavity.end(), behind) == cavity.end()) {
+                    cavity.push_back(behind);
+                    grown = true;
+                    break;
+                }
+            }
+            if (!grown) return true;
+        }
+        return false;
+    }
+
+    /// The outer faces of `cavity` (faces of one of its tets only), each as its tet with the
+    /// opposite vertex replaced by -1: orientation kept, so with a new vertex there every tet is
+    /// positive exactly when that vertex sees the face from inside.
+    std::vector<Tet> starOfCavity(const std::vector<std::int32_t>& cavity) const {
+        std::vector<std::array<std::int32_t, 3>> keys;
+        for (auto c : cavity)
+            for (int i = 0; i < 4; ++i) {
+                std::array<std::int32_t, 3> key{};
+                int n = 0;
+                for (int j = 0; j < 4; ++j)
+                    if (j != i) key[std::size_t(n++)] = m_.tets[std::size_t(c)][std::size_t(j)];
+                std::sort(key.begin(), key.end());
+                keys.push_back(key);
+            }
+        std::vector<Tet> star;
+        for (std::size_t ci = 0; ci < cavity.size(); ++ci)
+            for (int i = 0; i < 4; ++i) {
+                if (std::count(keys.begin(), keys.end(), keys[4 * ci + std::size_t(i)]) > 1) continue;
+                Tet x = m_.tets[std::size_t(cavity[ci])];
+                x[std::size_t(i)] = -1;
+                star.push_back(x);
+            }
+        return star;
     }
 
     TetMesh& m_;

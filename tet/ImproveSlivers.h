@@ -10,7 +10,9 @@
 //    (an edge whose 3..7 tets have the same label and whose ring is closed: the best triangulation
 //    of the ring, Shewchuk 2002; 3 tets = the 3-2 flip), checked by positive orientation and
 //    volume conservation;
-//  - splits: an edge or a face inside one region gets a new vertex, which is then smoothed.
+//  - splits: an edge or a face inside one region gets a new vertex, which is then smoothed;
+//  - cavity star: a tet and its same-region neighbours are replaced by the star of a new vertex
+//    over their outer faces (a flat tet on two boundary faces of a ridge needs a vertex above it).
 // Interface faces, interface vertices and labels never change, so conformity and every region's
 // geometry are kept. Serial and deterministic (tets visited by quality, ties by index).
 #pragma once
@@ -37,6 +39,7 @@ struct SliverStats {
     std::size_t edgeRemovals = 0;  ///< edges with 4..7 tets around them removed
     std::size_t splits = 0;     ///< edges split (one new node each)
     std::size_t faceSplits = 0; ///< faces split (one new node each)
+    std::size_t cavityStars = 0; ///< a tet and its same-region neighbours starred from a new node
     int passes = 0;
     double seconds = 0;
 };

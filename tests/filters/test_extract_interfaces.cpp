@@ -27,9 +27,8 @@ void expectValidComplex(const InterfaceComplex& c, const LabelField& field) {
     EXPECT_TRUE(si.pairs.empty()) << si.pairs.size() << " intersecting pairs";
     EXPECT_TRUE(si.degenerate.empty()) << si.degenerate.size() << " degenerate triangles";
     // the boundary of each region encloses exactly that region's voxels (winding number test on
-    // voxels next to the interfaces); voxels relabelled by the diagonal-contact repair excepted
-    auto repaired = field.labels->deepCopy();
-    makeLabelsWellComposed(*repaired, field.distances);
+    // voxels next to the interfaces) as extraction prepared them (pockets filled, contacts repaired)
+    const auto repaired = labelsToExtract(field);
     for (Label L : regionLabels(c)) {
         const SurfaceMesh b = regionBoundary(c, L);
         std::size_t checked = 0, wrong = 0;
