@@ -46,11 +46,8 @@ TEST(RunPhantom, MeshMeetsTheConformityQualityAndAccuracyTargets) {
                   f.validation.duplicateNodes + f.validation.degenerateTets,
               0u);
     EXPECT_TRUE(f.validation.missingTeeth.empty() && f.validation.missingPdls.empty());
-    // Issue #5 asks for >= 10 degrees everywhere; not met yet: the tets left below it sit in thin
-    // wedges of the interface surface (docs/DESIGN.md, tetrahedralization). Until then this
-    // guards what the sliver improvement achieves (measured: 23 of 194 k below 10, min 2.3).
-    EXPECT_GE(f.quality.minDihedralDeg, 1.0);
-    EXPECT_LE(double(f.quality.belowDihedralThreshold), 1e-3 * double(f.quality.tets));
+    EXPECT_GE(f.quality.minDihedralDeg, 10.0);
+    EXPECT_EQ(f.quality.belowDihedralThreshold, 0u);
     EXPECT_LE(f.quality.tets, 800000u);
     for (int u : teeth) {
         EXPECT_NEAR(f.pdlThicknessMeanMm.at(u), 0.20, 0.01) << "tooth " << u;

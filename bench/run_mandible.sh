@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# The whole pipeline (`jawmesh run`) on the shared OpenMandible mandible, RUNS times (default 3, at
+# least 3 for a median). Prints Markdown: the median wall time, CPU time and peak resident memory
+# of the process, then the median seconds of every stage from run.json, and the mesh figures of
+# the last run. Keeps the last run's output in OUT (default: a temporary folder, removed).
+# Usage: bench/run_mandible.sh [path/to/jawmesh] [runs]
+# Environment: JAWMESH_DATA (default: ../shared/data beside the checkout), THREADS (default 0 = all),
+#              OUT (keep the last run there).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+jawmesh="${1:-$here/../build/cli/jawmesh}"
+runs="${2:-3}"
+case_dir="${JAWMESH_DATA:-$here/../../shared/data}/openmandible"
+threads="${THREADS:-0}"
+[ -x "$jawmesh" ] || { echo "no jawmesh executable at $jawmesh (build it, or pass its path)" >&2; exit 1; }
+[ -d "$case_dir/input" ] || { echo "no shared data at $case_dir" >&2; exit 1; }
+[ "$runs" -ge 1 ] || { echo "runs must be >= 1" >&2; exit 1; }
+[ -x /usr/bin/time ] || { echo "/usr/bin/time (Debian package time) is needed for peak memory" >&2; exit 1; }
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+for run in $(seq 1 "$runs"); do
+  rm -rf "$work/out"
+  /usr/bin/time -f '{"wall": %e, "cpu": %U, "sys": %S, "max_rss_kb": %M}' -o "$work/time$run.json" \
+    "$jawmesh" --quiet --threads "$threads" run "$case_dir" -o "$work/out" --jaw mandible
+  cp "$work/out/mandible/run.json" "$work/run$run.json"
+done
+python3 - "$work" "$runs" "$(nproc)" "$(cut -d' ' -f1-3 /proc/loadavg)" <<'PY'
+import json, statistics, sys
+work, runs, cores, load = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
+times = [json.load(open(f"{work}/time{i}.json")) for i in range(1, runs + 1)]
+recs = [json.load(open(f"{work}/run{i}.json")) for i in range(1, runs + 1)]
+med = statistics.median
+print(f"`jawmesh run` OpenMandible mandible, median of {runs} runs, {cores} cores, load at the end {load}:\n")
+print("| wall s | CPU s | peak MB |")
+print("|---:|---:|---:|")
+print(f"| {med(t['wall'] for t in times):.0f} | {med(t['cpu'] + t['sys'] for t in times):.0f} | "
+      f"{med(t['max_rss_kb'] for t in times) / 1024:.0f} |")
+print("\n| stage | median s |")
+print("|---|---:|")
+for i, st in enumerate(recs[0]["stages"]):
+    print(f"| {st['name']} | {med(r['stages'][i]['seconds'] for r in recs):.1f} |")
+last = recs[-1]
+print(f"\nmesh: {last['mesh']}, quality: {last['quality']}, "
+      f"surface triangles per kind: {last['surface']['simplify']['triangles_per_kind']}")
+PY
+if [ -n "${OUT:-}" ]; then rm -rf "$OUT"; mv "$work/out" "$OUT"; fi
