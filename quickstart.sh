@@ -44,13 +44,24 @@ case "${1:-}" in
     ctest --test-dir build -L quick --output-on-failure -j "$(nproc)"
     ctest --test-dir build -L slow --output-on-failure
     ;;
+  mandible-test)
+    # The whole pipeline on the shared mandible (15-45 min on 2 cores), then the tests that check a
+    # finished run (tests/cli/slow_run_mandible.cpp, SlowEval, the FE solve); not part of CI's time.
+    install_packages
+    build
+    [ -d ../shared/data/openmandible ] || { echo "no ../shared/data/openmandible" >&2; exit 1; }
+    rm -rf build/mandible-run
+    ./build/cli/jawmesh run ../shared/data/openmandible -o build/mandible-run --jaw mandible
+    JAWMESH_MANDIBLE_RUN="$PWD/build/mandible-run/mandible" \
+      ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun' --output-on-failure
+    ;;
   slurm-test)
     install_packages "${SLURM_PACKAGES[@]}"
     build
     bash tests/slurm/slurm_batch_test.sh build/cli/jawmesh
     ;;
   *)
-    echo "usage: bash quickstart.sh demo|test|slurm-test" >&2
+    echo "usage: bash quickstart.sh demo|test|slurm-test|mandible-test" >&2
     exit 2
     ;;
 esac

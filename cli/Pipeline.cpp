@@ -194,18 +194,21 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     }
     const std::vector<int> teeth = teethInField(field);
 
+    ExtractStats extractStats;
     InterfaceComplex complex =
         log.run(jaw + ": interface surface", progress, [&] {
             ExtractOptions extract = options.extract;
             extract.findSeeds = false;  // simplification places them on its output
-            return extractInterfaces(field, extract, progress);
+            return extractInterfaces(field, extract, progress, &extractStats);
         });
     field = LabelField{};  // the grids are no longer needed; free them before TetGen
     SimplifyStats simplifyStats;
     complex = log.run(jaw + ": simplify surface", progress,
                       [&] { return simplifyInterfaces(complex, options.simplify, progress, &simplifyStats); });
     record["surface"] = {{"vertices", complex.surface.vertices.size()}, {"triangles", complex.surface.triangles.size()},
-                         {"seeds", complex.seeds.size()}, {"simplify", toJson(simplifyStats)}};
+                         {"seeds", complex.seeds.size()}, {"simplify", toJson(simplifyStats)},
+                         {"enclosed_outside_pockets_filled",
+                          {{"pockets", extractStats.pocketsFilled}, {"voxels", extractStats.pocketVoxelsFilled}}}};
 
     TetStats tetStats;
     TetMesh mesh = log.run(jaw + ": tetrahedralize", progress, [&] {

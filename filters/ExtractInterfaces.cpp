@@ -50,19 +50,28 @@ constexpr int kCellEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3
 
 }  // namespace
 
-openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOptions& options, Progress& progress) {
+openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOptions& options, Progress& progress,
+                                        ExtractStats* stats) {
     if (!field.labels) throw Error("interface extraction: the label field has no label grid");
     openvdb::Int32Grid::Ptr labels = field.labels->deepCopy();
     const double voxelMm = labels->voxelSize()[0];
     const auto maxPocketVoxels =
         std::size_t(std::max(0.0, options.maxEnclosedOutsideMm3) / (voxelMm * voxelMm * voxelMm));
-    if (maxPocketVoxels > 0) fillEnclosedOutside(*labels, maxPocketVoxels);
+    ExtractStats local;
+    ExtractStats& st = stats ? *stats : local;
+    const auto fill = [&] {
+        const EnclosedOutsideStats f = fillEnclosedOutside(*labels, maxPocketVoxels);
+        st.pocketsFilled += f.pockets;
+        st.pocketVoxelsFilled += f.voxels;
+        return f.pockets;
+    };
+    if (maxPocketVoxels > 0) fill();
     if (options.repairDiagonalContacts) {
         // The repair raises voxels to higher-priority regions, which can close new pockets.
         for (int round = 0;; ++round) {
             const std::size_t relabelled = makeLabelsWellComposed(*labels, field.distances, progress);
             if (relabelled == 0 || maxPocketVoxels == 0 || round == 3) break;
-            if (fillEnclosedOutside(*labels, maxPocketVoxels).pockets == 0) break;
+            if (fill() == 0) break;
         }
     } else if (countCriticalCells(*labels, field.distances) > 0) {
         throw Error("interface extraction: the label field has diagonal-only contacts");
@@ -71,13 +80,13 @@ openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOp
 }
 
 InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions& options,
-                                   Progress& progress) {
+                                   Progress& progress, ExtractStats* stats) {
     if (!field.labels) throw Error("interface extraction: the label field has no label grid");
     if (!field.labels->transform().isLinear())
         throw Error("interface extraction: the label grid's transform is not linear");
     ProgressStage stage(progress, "interface extraction");
 
-    openvdb::Int32Grid::Ptr labels = labelsToExtract(field, options, progress);
+    openvdb::Int32Grid::Ptr labels = labelsToExtract(field, options, progress, stats);
     stage.update(0.3);
 
     const std::vector<LabelEdge> edges = findLabelEdges(*labels, field.distances);

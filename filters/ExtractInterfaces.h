@@ -20,6 +20,8 @@
 #include "io/Progress.h"
 #include "levelset/LabelField.h"
 
+#include <cstddef>
+
 namespace jawmesh {
 
 struct ExtractOptions {
@@ -36,12 +38,18 @@ struct ExtractOptions {
     bool findSeeds = true;
 };
 
+/// What extraction changed in the labels before meshing them (recorded in run.json).
+struct ExtractStats {
+    std::size_t pocketsFilled = 0;       ///< enclosed outside pockets filled (FillEnclosedOutside.h)
+    std::size_t pocketVoxelsFilled = 0;
+};
+
 /// The labels extraction meshes: a copy of field.labels with small enclosed outside pockets filled
 /// (FillEnclosedOutside.h) and diagonal-only contacts repaired (WellComposedLabels.h), as the
 /// options ask. Throws Error when field.labels is missing, or has diagonal contacts and the repair
 /// is off.
 openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOptions& options = {},
-                                        Progress& progress = noProgress());
+                                        Progress& progress = noProgress(), ExtractStats* stats = nullptr);
 
 /// Extracts the interface complex of `field`: surface, label pair per triangle (sides[t][0] is the
 /// smaller label, so normals point out of the higher label: into the outside, out of teeth into
@@ -50,6 +58,6 @@ openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOp
 /// Throws Error when field.labels is missing or the transform is not linear, Cancelled on cancel.
 /// Cost: O(voxels next to an interface); memory ~100 bytes per interface quad.
 InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions& options = {},
-                                   Progress& progress = noProgress());
+                                   Progress& progress = noProgress(), ExtractStats* stats = nullptr);
 
 }  // namespace jawmesh
