@@ -1,6 +1,7 @@
 #include "batch/BatchLayout.h"
 
 #include "io/Error.h"
+#include "io/StagedFolder.h"
 
 #include <filesystem>
 #include <unistd.h>
@@ -59,17 +60,6 @@ void removeStalePartials(const std::string& outDir, const DatasetTask& task) {
     for (const fs::path& p : stale) fs::remove_all(p, ec);
 }
 
-void commitTaskOutput(const std::string& partialDir, const std::string& finalDir) {
-    std::error_code ec;
-    const std::string old = partialDir + ".old";
-    const bool hadOld = fs::exists(finalDir, ec);
-    if (hadOld) {
-        fs::rename(finalDir, old, ec);
-        if (ec) throw Error(finalDir, "cannot move the previous outputs aside: " + ec.message());
-    }
-    fs::rename(partialDir, finalDir, ec);
-    if (ec) throw Error(finalDir, "cannot rename the completed outputs into place: " + ec.message());
-    if (hadOld) fs::remove_all(old, ec);
-}
+void commitTaskOutput(const std::string& partialDir, const std::string& finalDir) { replaceFolder(partialDir, finalDir); }
 
 }  // namespace jawmesh

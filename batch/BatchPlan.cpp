@@ -16,10 +16,7 @@ std::uint64_t estimateTaskMemory(const DatasetTask& task, double voxelMm) {
     try {
         for (const JawCase& jawCase : discoverCase(task.caseDir).jaws) {
             if (jawName(jawCase.jaw) != task.jaw) continue;
-            const JawSurfaces surfaces = loadJaw(jawCase);
-            double area = surfaceAreaMm2(surfaces.bone);
-            for (const auto& [unn, tooth] : surfaces.teeth) area += surfaceAreaMm2(tooth);
-            return estimateRunMemoryBytes(area, voxelMm);
+            return estimateJawMemoryBytes(loadJaw(jawCase), voxelMm);
         }
     } catch (const Error&) {
     }

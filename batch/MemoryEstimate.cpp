@@ -1,6 +1,10 @@
 #include "batch/MemoryEstimate.h"
 
+#include "io/Error.h"
+
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -54,6 +58,44 @@ double surfaceAreaMm2(const SurfaceMesh& mesh) {
 
 std::uint64_t estimateRunMemoryBytes(double inputAreaMm2, double voxelMm) {
     return static_cast<std::uint64_t>(kBaseBytes + kBytesPerSurfaceVoxel * inputAreaMm2 / (voxelMm * voxelMm));
+}
+
+namespace {
+double jawAreaMm2(const JawSurfaces& surfaces) {
+    double area = surfaceAreaMm2(surfaces.bone);
+    for (const auto& [unn, tooth] : surfaces.teeth) area += surfaceAreaMm2(tooth);
+    return area;
+}
+
+std::string gigabytes(double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GB", bytes / 1e9);
+    return text;
+}
+}  // namespace
+
+std::uint64_t estimateJawMemoryBytes(const JawSurfaces& surfaces, double voxelMm) {
+    return estimateRunMemoryBytes(jawAreaMm2(surfaces), voxelMm);
+}
+
+void requireMemoryFits(const JawSurfaces& surfaces, double voxelMm, std::uint64_t availableBytes, const std::string& where) {
+    if (availableBytes == 0) return;
+    const double area = jawAreaMm2(surfaces);
+    const std::uint64_t needed = estimateRunMemoryBytes(area, voxelMm);
+    if (needed <= availableBytes) return;
+    char voxelText[32];
+    std::snprintf(voxelText, sizeof voxelText, "%g", voxelMm);
+    std::string message = std::string("at a voxel of ") + voxelText + " mm this jaw needs about " +
+                          gigabytes(static_cast<double>(needed)) + " (estimate for " +
+                          std::to_string(static_cast<long long>(area)) + " mm^2 of input surface) but only " +
+                          gigabytes(static_cast<double>(availableBytes)) + " of memory are available";
+    const double room = static_cast<double>(availableBytes) - kBaseBytes;
+    if (room > 0) {
+        char voxel[32];
+        std::snprintf(voxel, sizeof voxel, "%.3g", std::sqrt(kBytesPerSurfaceVoxel * area / room) * 1.01);
+        message += std::string("; a voxel of ") + voxel + " mm or more would fit";
+    }
+    throw Error(where, message);
 }
 
 std::uint64_t availableMemoryBytes() {

@@ -11,9 +11,11 @@
 // Reading the surfaces to get A costs about a second per million triangles.
 #pragma once
 
+#include "io/Case.h"
 #include "io/SurfaceMesh.h"
 
 #include <cstdint>
+#include <string>
 
 namespace jawmesh {
 
@@ -22,6 +24,14 @@ double surfaceAreaMm2(const SurfaceMesh& mesh);
 
 /// The rule above, in bytes. voxelMm must be > 0.
 std::uint64_t estimateRunMemoryBytes(double inputAreaMm2, double voxelMm);
+
+/// The rule above for one jaw's input surfaces (bone and teeth), bytes. voxelMm must be > 0.
+std::uint64_t estimateJawMemoryBytes(const JawSurfaces& surfaces, double voxelMm);
+
+/// Refuses a run up front: throws Error(where, ...) stating the estimate, the available memory and
+/// the smallest voxel that would fit when estimateJawMemoryBytes() exceeds availableBytes
+/// (0 = unknown: no check). Cost: one pass over the triangles.
+void requireMemoryFits(const JawSurfaces& surfaces, double voxelMm, std::uint64_t availableBytes, const std::string& where);
 
 /// Memory the batch may use now, bytes: /proc/meminfo MemAvailable, capped by the cgroup (v2 or v1)
 /// limit minus its current use when one is set. 0 when neither can be read.

@@ -29,22 +29,6 @@ const JawCase& findJaw(const CaseInfo& info, const DatasetTask& task) {
     throw Error(task.caseDir, "has no " + task.jaw + " jaw any more (the dataset changed since the batch was planned)");
 }
 
-/// runJaw keeps the interface surface of a failed TetGen step in <partial>/failed_surface/ and
-/// names it in the message; the partial folder is about to go, so the surface moves to the task's
-/// failed-surface folder, and the message says where it now is.
-std::string keepFailedSurface(const std::string& partial, const std::string& keptDir, std::string message) {
-    namespace fs = std::filesystem;
-    const std::string from = partial + "/failed_surface";
-    std::error_code ec;
-    if (!fs::is_directory(from, ec)) return message;
-    fs::remove_all(keptDir, ec);
-    fs::rename(from, keptDir, ec);
-    if (ec) return message + " (could not keep it: " + ec.message() + ")";
-    for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + keptDir.size()))
-        message.replace(at, from.size(), keptDir);
-    return message;
-}
-
 }  // namespace
 
 void runBatchTask(const std::string& outDir, std::size_t index, Progress& progress) {

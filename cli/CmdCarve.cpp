@@ -1,9 +1,12 @@
 // jawmesh carve: case -> level sets -> carved PDLs -> label field (.vdb) + summary.json.
+#include "batch/MemoryEstimate.h"
 #include "cli/Commands.h"
+#include "cli/Pipeline.h"
 #include "io/AtomicFile.h"
 #include "io/Case.h"
 #include "io/Error.h"
 #include "io/ResourceUsage.h"
+#include "io/StagedFolder.h"
 #include "levelset/CarveGaps.h"
 #include "levelset/LabelFieldIO.h"
 #include "levelset/MeshToLevelSet.h"
@@ -11,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -28,6 +32,7 @@ struct CarveCliOptions {
     double clearanceVoxels = 1.0;
     double gapBridgeMm = 0.5;
     bool json = false;
+    bool memoryCheck = true;
 };
 
 nlohmann::json summaryJson(const CarveSummary& s, const CarveOptions& o) {
@@ -72,6 +77,8 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
         if (j.jaw == jaw) jc = &j;
     if (!jc) throw Error(opt.caseDir, "case has no " + opt.jaw);
     const JawSurfaces surfaces = loadJaw(*jc, LoadOptions(), progress);
+    requireMemoryFits(surfaces, opt.voxelMm, opt.memoryCheck ? availableMemoryBytes() : 0,
+                      std::filesystem::path(jc->bonePath).parent_path().parent_path().string());
     const double secondsLoad = secondsSince(start);
     const auto peakLoad = peakResidentMemoryBytes();
 
@@ -87,21 +94,15 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     }
 
     const auto tLevel = std::chrono::steady_clock::now();
-    openvdb::FloatGrid::Ptr bone = meshToLevelSet(surfaces.bone, opt.voxelMm, 3.0, progress);
-    bone->setName(labelName(boneLabel(jaw)));
-    std::map<int, openvdb::FloatGrid::ConstPtr> teeth;
-    for (const auto& [unn, mesh] : surfaces.teeth) {
-        auto g = meshToLevelSet(mesh, opt.voxelMm, 3.0, progress);
-        g->setName(labelName(toothLabel(unn)));
-        teeth[unn] = g;
-    }
+    const JawLevelSets levelSets = jawLevelSets(surfaces, *jc, opt.voxelMm, 3.0, progress);
     const double secondsLevelSets = secondsSince(tLevel);
     const auto peakLevelSets = peakResidentMemoryBytes();
 
     CarveSummary summary;
-    const LabelField field = carveJaw(jaw, *bone, teeth, co, summary, progress);
+    const LabelField field = carveJaw(jaw, *levelSets.bone, levelSets.teeth, co, summary, progress);
 
-    const std::string jawDir = opt.output + "/" + jawName(jaw);
+    StagedFolder staged(opt.output + "/" + jawName(jaw));
+    const std::string jawDir = staged.path();
     writeLabelField(field, jawDir + "/levelsets");
     nlohmann::json j = summaryJson(summary, co);
     j["case"] = opt.caseDir;
@@ -117,6 +118,7 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
         stages.push_back({{"name", "carve: " + st.name}, {"seconds", st.seconds}, {"peak_memory_bytes", st.peakMemoryBytes}});
     j["stages"] = stages;
     writeFileAtomically(jawDir + "/summary.json", [&](std::ostream& os) { os << j.dump(2) << "\n"; }, false);
+    staged.commit(StagedFolder::Mode::Replace);
     if (opt.json) std::cout << j.dump() << std::endl;
     if (!global.quiet)
         for (const auto& w : summary.warnings) std::cerr << "warning: " << w << "\n";
@@ -141,6 +143,8 @@ void addCarveCommand(CLI::App& app, GlobalOptions& global) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--gap-bridge", opt->gapBridgeMm, "Widest root-socket gap bridged, mm (default 0.5)")->check(CLI::NonNegativeNumber);
     cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");
+    cmd->add_flag("!--no-memory-check", opt->memoryCheck,
+                  "Run even when the memory estimate exceeds the available memory");
     cmd->callback([opt, &global] { runCarve(*opt, global); });
 }
 

@@ -1,4 +1,5 @@
 // jawmesh demo: the built-in synthetic phantom through the whole pipeline (the README's first command).
+#include "batch/MemoryEstimate.h"
 #include "cli/Commands.h"
 #include "cli/Pipeline.h"
 #include "levelset/Phantom.h"
@@ -24,8 +25,10 @@ void runDemo(const DemoOptions& opt, const GlobalOptions& global) {
         writePhantomCase({makePhantom(phantom, progress)}, caseDir);
     }
     const CaseInfo info = discoverCase(caseDir);
+    RunOptions options = defaultRunOptions();
+    options.memoryLimitBytes = availableMemoryBytes();
     for (const JawCase& jawCase : info.jaws)
-        runJaw(jawCase, defaultRunOptions(), opt.outDir + "/" + jawName(jawCase.jaw), progress);
+        runJawStaged(jawCase, options, opt.outDir + "/" + jawName(jawCase.jaw), progress);
     if (!global.quiet) std::fprintf(stderr, "demo: case in %s, meshes in %s/<jaw>/\n", caseDir.c_str(), opt.outDir.c_str());
 }
 

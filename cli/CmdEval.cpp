@@ -5,6 +5,7 @@
 #include "io/Error.h"
 #include "io/GmshReader.h"
 #include "io/MeshIO.h"
+#include "io/StagedFolder.h"
 
 #include <cstdio>
 #include <iostream>
@@ -48,8 +49,10 @@ void runEval(const EvalCliOptions& opt, const GlobalOptions& global) {
         ProgressStage stage(progress, "eval: read input");
         input = loadEvalInput(opt.inputPath, jaw, {}, progress);
     }
+    StagedFolder staged(opt.outDir);
     const nlohmann::json report =
-        writeEvalReport(mesh, haveInput ? &input : nullptr, opt.eval, opt.outDir, opt.meshPath, progress);
+        writeEvalReport(mesh, haveInput ? &input : nullptr, opt.eval, staged.path(), opt.meshPath, progress);
+    staged.commit(StagedFolder::Mode::Merge);  // the folder is the user's: other files in it stay
     if (opt.json) std::cout << report.dump(2) << std::endl;
     if (!global.quiet) {
         std::fprintf(stderr, "%s\nwrote %s/report.html, report.json (%.1f s)\n", report["verdict"]["line"].get<std::string>().c_str(),

@@ -7,6 +7,7 @@
 #include "io/AtomicFile.h"
 #include "io/Error.h"
 #include "io/GmshReader.h"
+#include "io/StagedFolder.h"
 #include "io/ToothAxes.h"
 
 #include <nlohmann/json.hpp>
@@ -57,18 +58,22 @@ void runFe(const FeCliOptions& opt, const GlobalOptions& global) {
     std::vector<std::string> written;
     FeScenario scenario;
     std::vector<std::string> notes;
+    // The decks of a scenario go together: staged, then moved into <jaw>/simulation/ at once.
+    StagedFolder staged(jawDir.string());
+    const fs::path stagedDir = staged.path();
     if (opt.scenario == "tipping") {
         const std::map<int, ToothAxes> given = opt.axesPath.empty() ? std::map<int, ToothAxes>() : readToothAxes(opt.axesPath);
         const auto axes = axesForMesh(mesh, given, &notes);
         scenario = tippingScenario(mesh, axes, o.tipping);
-        writeToothAxes(axes, (jawDir / "simulation" / "tipping_axes.json").string());
+        writeToothAxes(axes, (stagedDir / "simulation" / "tipping_axes.json").string());
     } else {
         scenario = bitingScenario(mesh, o.biting);
     }
     scenario.notes.insert(scenario.notes.begin(), notes.begin(), notes.end());
-    written = writeScenarioDecks(mesh, scenario, jawDir.string(), o);
+    written = writeScenarioDecks(mesh, scenario, stagedDir.string(), o);
+    staged.commit(StagedFolder::Mode::Merge);  // the jaw folder's other files (the mesh) stay
     if (!global.quiet) {
-        for (const std::string& p : written) std::cerr << "wrote " << p << "\n";
+        for (const std::string& p : written) std::cerr << "wrote " << (jawDir / fs::path(p).lexically_relative(stagedDir)).string() << "\n";
         for (const std::string& n : scenario.notes) std::cerr << "note: " << n << "\n";
     }
     if (!opt.solve) return;

@@ -1,4 +1,5 @@
 // jawmesh run: the main job, case folder -> validated labeled meshes for every jaw.
+#include "batch/MemoryEstimate.h"
 #include "cli/Commands.h"
 #include "cli/Pipeline.h"
 #include "io/Error.h"
@@ -17,6 +18,7 @@ struct RunCommandOptions {
     std::string fromVdb;
     double voxelMm = 0;
     bool writeLevelSets = false;
+    bool memoryCheck = true;
 };
 
 void runCase(const RunCommandOptions& opt, const GlobalOptions& global) {
@@ -25,12 +27,13 @@ void runCase(const RunCommandOptions& opt, const GlobalOptions& global) {
     if (opt.voxelMm > 0) options.voxelSizeMm = opt.voxelMm;
     if (opt.writeLevelSets) options.writeLevelSets = true;
     if (!opt.fromVdb.empty()) options.fromVdb = opt.fromVdb;
+    if (opt.memoryCheck) options.memoryLimitBytes = availableMemoryBytes();
     const CaseInfo info = discoverCase(opt.caseDir);
     int ran = 0;
     for (const JawCase& jawCase : info.jaws) {
         if (!opt.jaw.empty() && jawName(jawCase.jaw) != opt.jaw) continue;
         const nlohmann::json record =
-            runJaw(jawCase, options, opt.outDir + "/" + jawName(jawCase.jaw), terminalProgress(global));
+            runJawStaged(jawCase, options, opt.outDir + "/" + jawName(jawCase.jaw), terminalProgress(global));
         ++ran;
         if (!global.quiet)
             std::fprintf(stderr, "%s: %zu nodes, %zu tets, %.1f s -> %s/%s\n", jawName(jawCase.jaw).c_str(),
@@ -54,6 +57,8 @@ void addRunCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_flag("--write-levelsets", opt->writeLevelSets, "Also write the carved level sets (.vdb)");
     cmd->add_option("--from-vdb", opt->fromVdb, "Resume from a carved level-set folder (e.g. an edited one)")
         ->check(CLI::ExistingDirectory);
+    cmd->add_flag("!--no-memory-check", opt->memoryCheck,
+                  "Run even when the memory estimate exceeds the available memory");
     cmd->callback([opt, &global] { runCase(*opt, global); });
 }
 

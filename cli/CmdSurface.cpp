@@ -7,6 +7,7 @@
 #include "io/Error.h"
 #include "io/PolyWriter.h"
 #include "io/ResourceUsage.h"
+#include "io/StagedFolder.h"
 #include "levelset/LabelFieldIO.h"
 
 #include <nlohmann/json.hpp>
@@ -45,8 +46,9 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
     if (opt.simplifyOn) complex = simplifyInterfaces(complex, opt.simplify, progress, &stats);
 
     const std::string jaw = jawName(field.jaw);
-    writeTetgenPoly(complex, opt.output + "/" + jaw + ".poly");
-    writeRegionBoundaries(complex, opt.output + "/regions", "ply");
+    StagedFolder staged(opt.output);
+    writeTetgenPoly(complex, staged.path() + "/" + jaw + ".poly");
+    writeRegionBoundaries(complex, staged.path() + "/regions", "ply");
     nlohmann::json j = {{"input", opt.carveDir},
                         {"jaw", jaw},
                         {"voxel_mm", field.voxelSizeMm},
@@ -65,7 +67,8 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
                                     {"min_angle_deg", opt.simplify.minAngleDeg},
                                     {"min_wedge_deg", opt.simplify.minWedgeDeg}};
     }
-    writeFileAtomically(opt.output + "/surface.json", [&](std::ostream& os) { os << j.dump(2) << "\n"; }, false);
+    writeFileAtomically(staged.path() + "/surface.json", [&](std::ostream& os) { os << j.dump(2) << "\n"; }, false);
+    staged.commit(StagedFolder::Mode::Merge);  // the folder is the user's: other files in it stay
     if (opt.json) std::cout << j.dump() << std::endl;
 }
 

@@ -1,5 +1,6 @@
 #include "cli/Pipeline.h"
 
+#include "batch/MemoryEstimate.h"
 #include "cli/EvalReport.h"
 #include "fe/FeDecks.h"
 #include "io/Error.h"
@@ -9,7 +10,9 @@
 #include "io/MeditWriter.h"
 #include "io/ResourceUsage.h"
 #include "io/AtomicFile.h"
+#include "io/StagedFolder.h"
 #include "io/VtuWriter.h"
+#include "levelset/InsideOverlap.h"
 #include "levelset/LabelFieldIO.h"
 #include "levelset/MeshToLevelSet.h"
 #include "tet/ElementQuality.h"
@@ -23,11 +26,16 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 namespace jawmesh {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// Share of the smaller tooth's volume two teeth may have in common before the case is refused
+/// (insideOverlapFraction): real contacts stay at a few percent; a tooth exported twice is near 100%.
+constexpr double kHeavyOverlapFraction = 0.3;
 
 /// Times named steps into run.json's "stages" (seconds and peak memory after each step).
 class StageLog {
@@ -62,91 +70,53 @@ std::vector<int> teethInField(const LabelField& field) {
     return unns;
 }
 
-template <typename T>
-void readKey(const nlohmann::json& j, const char* key, T& value) {
-    if (j.contains(key)) value = j.at(key).get<T>();
-}
-
 }  // namespace
 
-RunOptions defaultRunOptions() {
-    RunOptions o;
-    o.tet.pdlEdgeMm = 0.3;
-    o.tet.toothEdgeMm = 1.0;
-    o.tet.boneEdgeMm = 2.0;
-    return o;
+std::string toothSource(const JawCase& jawCase, int unn) {
+    const auto file = jawCase.toothPaths.find(unn);
+    if (file != jawCase.toothPaths.end()) return file->second;
+    return jawCase.allTeethPath + " (tooth " + std::to_string(unn) + ")";
 }
 
-nlohmann::json runOptionsToJson(const RunOptions& o) {
-    nlohmann::json j = {
-        {"voxel_mm", o.voxelSizeMm},
-        {"band_voxels", o.bandVoxels},
-        {"scale", o.load.scale},
-        {"pdl_thickness_mm", o.carve.pdlThicknessMm},
-        {"pdl_ratio", o.carve.pdlRatio},
-        {"clearance_voxels", o.carve.clearanceVoxels},
-        {"gap_bridge_mm", o.carve.gapBridgeMm},
-        {"surface_tooth_error_mm", o.simplify.toothErrorMm},
-        {"surface_bone_error_mm", o.simplify.boneErrorMm},
-        {"surface_bone_far_error_mm", o.simplify.boneFarErrorMm},
-        {"surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm},
-        {"surface_min_angle_deg", o.simplify.minAngleDeg},
-        {"surface_min_wedge_deg", o.simplify.minWedgeDeg},
-        {"tet_radius_edge", o.tet.radiusEdgeRatio},
-        {"tet_min_dihedral_deg", o.tet.minDihedralDeg},
-        {"tet_pdl_edge_mm", o.tet.pdlEdgeMm},
-        {"tet_tooth_edge_mm", o.tet.toothEdgeMm},
-        {"tet_bone_edge_mm", o.tet.boneEdgeMm},
-        {"write_levelsets", o.writeLevelSets},
-        {"from_vdb", o.fromVdb},
-    };
-    if (o.carve.profile)
-        j["pdl_profile_mm"] = {o.carve.profile->cervical, o.carve.profile->midRoot, o.carve.profile->apical};
-    return j;
-}
-
-void applyRunConfig(const std::string& path, RunOptions& o) {
-    std::ifstream in(path);
-    if (!in) throw Error(path, "cannot open config file");
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-        throw Error(path, std::string("invalid JSON: ") + e.what());
-    }
-    if (!j.is_object()) throw Error(path, "config must be a JSON object");
-    const nlohmann::json known = runOptionsToJson(o);
-    for (const auto& [key, value] : j.items())
-        if (!known.contains(key) && key != "pdl_profile_mm") throw Error(path, "unknown config key '" + key + "'");
-    try {
-        readKey(j, "voxel_mm", o.voxelSizeMm);
-        readKey(j, "band_voxels", o.bandVoxels);
-        readKey(j, "scale", o.load.scale);
-        readKey(j, "pdl_thickness_mm", o.carve.pdlThicknessMm);
-        readKey(j, "pdl_ratio", o.carve.pdlRatio);
-        readKey(j, "clearance_voxels", o.carve.clearanceVoxels);
-        readKey(j, "gap_bridge_mm", o.carve.gapBridgeMm);
-        readKey(j, "surface_tooth_error_mm", o.simplify.toothErrorMm);
-        readKey(j, "surface_bone_error_mm", o.simplify.boneErrorMm);
-        readKey(j, "surface_bone_far_error_mm", o.simplify.boneFarErrorMm);
-        readKey(j, "surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm);
-        readKey(j, "surface_min_angle_deg", o.simplify.minAngleDeg);
-        readKey(j, "surface_min_wedge_deg", o.simplify.minWedgeDeg);
-        readKey(j, "tet_radius_edge", o.tet.radiusEdgeRatio);
-        readKey(j, "tet_min_dihedral_deg", o.tet.minDihedralDeg);
-        readKey(j, "tet_pdl_edge_mm", o.tet.pdlEdgeMm);
-        readKey(j, "tet_tooth_edge_mm", o.tet.toothEdgeMm);
-        readKey(j, "tet_bone_edge_mm", o.tet.boneEdgeMm);
-        readKey(j, "write_levelsets", o.writeLevelSets);
-        readKey(j, "from_vdb", o.fromVdb);
-        if (j.contains("pdl_profile_mm")) {
-            const auto p = j.at("pdl_profile_mm").get<std::vector<double>>();
-            if (p.size() != 3) throw Error(path, "pdl_profile_mm needs 3 values (cervical, mid-root, apical)");
-            o.carve.profile = PdlProfile{p[0], p[1], p[2]};
+JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double bandVoxels,
+                          Progress& progress) {
+    auto levelSet = [&](const SurfaceMesh& mesh, Label label, const std::string& source) {
+        try {
+            openvdb::FloatGrid::Ptr grid = meshToLevelSet(mesh, voxelMm, bandVoxels, progress);
+            grid->setName(labelName(label));
+            return grid;
+        } catch (const Error& e) {
+            throw Error(source, e.reason());
         }
-    } catch (const nlohmann::json::exception& e) {
-        throw Error(path, std::string("wrong value type: ") + e.what());
-    }
+    };
+    JawLevelSets sets;
+    sets.bone = levelSet(surfaces.bone, boneLabel(surfaces.jaw), jawCase.bonePath);
+    for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = levelSet(mesh, toothLabel(unn), toothSource(jawCase, unn));
+    // Teeth in contact overlap a little and the carving splits them; a large shared volume is a
+    // segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.
+    for (auto a = sets.teeth.begin(); a != sets.teeth.end(); ++a)
+        for (auto b = std::next(a); b != sets.teeth.end(); ++b) {
+            progress.checkCancelled();
+            const double shared = insideOverlapFraction(*a->second, *b->second);
+            if (shared > kHeavyOverlapFraction)
+                throw Error(toothSource(jawCase, b->first),
+                            "overlaps " + toothSource(jawCase, a->first) + " by " +
+                                std::to_string(static_cast<int>(shared * 100 + 0.5)) +
+                                "% of the smaller tooth's volume: the same tooth exported twice, or two teeth "
+                                "segmented into each other? Fix the segmentation.");
+        }
+    return sets;
+}
+
+void requireBoneContact(const CarveSummary& summary, const JawCase& jawCase, const CarveOptions& options) {
+    for (const ToothCarveSummary& t : summary.teeth)
+        if (t.pdlVolumeMm3 <= 0) {
+            std::ostringstream reason;
+            reason << "tooth " << t.unn << " does not reach the bone (no root surface within the "
+                   << options.gapBridgeMm << " mm gap bridge of a socket), so it gets no PDL; is the file in the "
+                   << "bone's coordinate frame and of this jaw?";
+            throw Error(toothSource(jawCase, t.unn), reason.str());
+        }
 }
 
 nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const std::string& outJawDir,
@@ -172,22 +142,21 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     } else {
         JawSurfaces surfaces =
             log.run(jaw + ": read", progress, [&] { return loadJaw(jawCase, options.load, progress); });
+        requireMemoryFits(surfaces, options.voxelSizeMm, options.memoryLimitBytes,
+                          std::filesystem::path(jawCase.bonePath).parent_path().parent_path().string());
         caseAxes = surfaces.axes;
         record["input"] = {{"bone_triangles", surfaces.bone.triangles.size()}, {"teeth", surfaces.teeth.size()}};
         for (const std::string& note : surfaces.notes) record["notes"].push_back(note);
-        openvdb::FloatGrid::Ptr bone;
-        std::map<int, openvdb::FloatGrid::ConstPtr> teeth;
-        log.run(jaw + ": level sets", progress, [&] {
-            bone = meshToLevelSet(surfaces.bone, options.voxelSizeMm, options.bandVoxels, progress);
-            for (const auto& [unn, mesh] : surfaces.teeth)
-                teeth[unn] = meshToLevelSet(mesh, options.voxelSizeMm, options.bandVoxels, progress);
+        const JawLevelSets levelSets = log.run(jaw + ": level sets", progress, [&] {
+            return jawLevelSets(surfaces, jawCase, options.voxelSizeMm, options.bandVoxels, progress);
         });
         CarveOptions carve = options.carve;
         if (carve.axes.empty()) carve.axes = surfaces.axes;
         CarveSummary summary;
         field = log.run(jaw + ": carve", progress,
-                        [&] { return carveJaw(jawCase.jaw, *bone, teeth, carve, summary, progress); });
+                        [&] { return carveJaw(jawCase.jaw, *levelSets.bone, levelSets.teeth, carve, summary, progress); });
         for (const std::string& w : summary.warnings) record["warnings"].push_back(w);
+        requireBoneContact(summary, jawCase, carve);
         if (options.writeLevelSets)
             log.run(jaw + ": write level sets", progress,
                     [&] { writeLabelField(field, outJawDir + "/levelsets"); });
@@ -276,6 +245,33 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     record["peak_memory_bytes"] = peakResidentMemoryBytes();
     writeFileAtomically(outJawDir + "/run.json", [&](std::ostream& out) { out << record.dump(2) << '\n'; }, false);
     return record;
+}
+
+nlohmann::json runJawStaged(const JawCase& jawCase, const RunOptions& options, const std::string& outJawDir,
+                            Progress& progress) {
+    StagedFolder staged(outJawDir);
+    nlohmann::json record;
+    try {
+        record = runJaw(jawCase, options, staged.path(), progress);
+    } catch (const Error& e) {
+        throw Error(keepFailedSurface(staged.path(), outJawDir + "/failed_surface", e.what()));
+    }
+    staged.commit(StagedFolder::Mode::Replace);  // a jaw folder holds one run (no stale teeth of an earlier one)
+    return record;
+}
+
+std::string keepFailedSurface(const std::string& outJawDir, const std::string& keptDir, std::string message) {
+    namespace fs = std::filesystem;
+    const std::string from = outJawDir + "/failed_surface";
+    std::error_code ec;
+    if (!fs::is_directory(from, ec)) return message;
+    fs::remove_all(keptDir, ec);
+    fs::create_directories(fs::path(keptDir).parent_path(), ec);
+    fs::rename(from, keptDir, ec);
+    if (ec) return message + " (could not keep it: " + ec.message() + ")";
+    for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + keptDir.size()))
+        message.replace(at, from.size(), keptDir);
+    return message;
 }
 
 }  // namespace jawmesh

@@ -3,40 +3,38 @@
 // Only wiring: every step is a stage-library function; this file decides order, options and files.
 #pragma once
 
-#include "filters/ExtractInterfaces.h"
-#include "filters/SimplifyInterfaces.h"
+#include "cli/RunOptions.h"
 #include "io/Case.h"
 #include "io/Progress.h"
-#include "levelset/CarveGaps.h"
-#include "tet/Tetrahedralize.h"
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <string>
 
 namespace jawmesh {
 
-struct RunOptions {
-    double voxelSizeMm = 0.05;     ///< level-set voxel; the PDL needs >= 4 voxels across
-    double bandVoxels = 3.0;       ///< narrow-band half width of the input level sets
-    LoadOptions load;
-    CarveOptions carve;
-    ExtractOptions extract;
-    SimplifyOptions simplify;
-    TetOptions tet;
-    bool writeLevelSets = false;   ///< also write <out>/<jaw>/levelsets/*.vdb
-    std::string fromVdb;           ///< resume from a carved label field folder instead of surfaces
+/// The input level sets of one jaw, grids named after their labels.
+struct JawLevelSets {
+    openvdb::FloatGrid::Ptr bone;
+    std::map<int, openvdb::FloatGrid::ConstPtr> teeth;  ///< by UNN
 };
 
-/// Default options for jaws (mesh sizes in mm chosen for the published jaw models' element counts).
-RunOptions defaultRunOptions();
+/// meshToLevelSet of the bone and every tooth of `surfaces` (read from `jawCase`). Throws Error
+/// naming the input file for a surface that cannot become a level set (e.g. only degenerate
+/// triangles: a point cloud) and for two teeth sharing more than 30% of the smaller one's volume
+/// (levelset/InsideOverlap.h: a tooth exported twice, teeth merged). Throws Cancelled.
+JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double bandVoxels,
+                          Progress& progress = noProgress());
 
-/// Reads a --config JSON file over `options` (keys as in runOptionsToJson); unknown keys are an
-/// Error naming the file and key, so a typo never silently falls back to a default.
-void applyRunConfig(const std::string& path, RunOptions& options);
+/// The input file of tooth `unn` of a jaw case, for messages ("<all_teeth.obj> (tooth 24)" when
+/// the teeth came from one file).
+std::string toothSource(const JawCase& jawCase, int unn);
 
-/// The options as JSON, as recorded in run.json (and accepted by applyRunConfig).
-nlohmann::json runOptionsToJson(const RunOptions& options);
+/// Throws Error naming the tooth's file when a carved tooth got no PDL: it does not reach the bone
+/// (a tooth in another coordinate frame, of the other jaw, or far from its socket). runJaw calls it
+/// after carving, before the long surface and TetGen stages that would end in a missing PDL.
+void requireBoneContact(const CarveSummary& summary, const JawCase& jawCase, const CarveOptions& options);
 
 /// Runs every stage for one jaw and writes <outJawDir>/{volumetric_meshes,surface_meshes,levelsets}
 /// and <outJawDir>/run.json. The mesh is validated before anything of it is written; a violation is
@@ -44,5 +42,17 @@ nlohmann::json runOptionsToJson(const RunOptions& options);
 /// Throws Error for bad input or a failed stage, Cancelled when progress is cancelled.
 nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const std::string& outJawDir,
                       Progress& progress = noProgress());
+
+/// runJaw into a staging folder (io/StagedFolder.h) moved to outJawDir only when the run is
+/// complete: a failed or interrupted run leaves nothing in outJawDir but, when TetGen failed, the
+/// interface surface in <outJawDir>/failed_surface/ (the message names it). Throws as runJaw.
+nlohmann::json runJawStaged(const JawCase& jawCase, const RunOptions& options, const std::string& outJawDir,
+                            Progress& progress = noProgress());
+
+/// runJaw keeps the interface surface of a failed TetGen step in <outJawDir>/failed_surface/ and
+/// names it in its message. When outJawDir is about to be removed (a staging folder), this moves
+/// that folder to keptDir (replacing it) and returns the message naming keptDir instead; returns
+/// the message unchanged when there is no such folder.
+std::string keepFailedSurface(const std::string& outJawDir, const std::string& keptDir, std::string message);
 
 }  // namespace jawmesh

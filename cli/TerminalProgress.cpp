@@ -9,17 +9,22 @@ namespace jawmesh {
 namespace {
 std::atomic<int> gInterrupts{0};
 
-extern "C" void onSigint(int) {
+// SIGTERM (kill, Slurm's scancel, a container stop) is a request to stop like Ctrl-C: the run
+// stops at its next safe point and removes its staging folder.
+extern "C" void onInterrupt(int signal) {
     if (gInterrupts.fetch_add(1) >= 1) {
-        std::signal(SIGINT, SIG_DFL);
-        std::raise(SIGINT);
+        std::signal(signal, SIG_DFL);
+        std::raise(signal);
     }
 }
 }  // namespace
 
 TerminalProgress::TerminalProgress(bool quiet) : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0) {}
 
-void TerminalProgress::installInterruptHandler() { std::signal(SIGINT, onSigint); }
+void TerminalProgress::installInterruptHandler() {
+    std::signal(SIGINT, onInterrupt);
+    std::signal(SIGTERM, onInterrupt);
+}
 
 bool TerminalProgress::cancelled() const { return gInterrupts.load() > 0; }
 

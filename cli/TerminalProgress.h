@@ -1,6 +1,6 @@
 // Progress on a terminal: "[mandible / carve] 42% 3.1 s" redrawn in place on a TTY, one line per
 // finished top-level stage otherwise; silent with --quiet. Nested stages show as "outer / inner"
-// with the innermost stage's percentage and the outer stage's elapsed time. Ctrl-C sets a flag that
+// with the innermost stage's percentage and the outer stage's elapsed time. Ctrl-C (or SIGTERM) sets a flag that
 // library code polls, so a run stops at a safe point and writes no partial output.
 #pragma once
 
@@ -21,7 +21,7 @@ public:
     void end() override;
     bool cancelled() const override;
 
-    /// Installs a SIGINT handler that makes cancelled() true (the second Ctrl-C kills at once).
+    /// Installs SIGINT and SIGTERM handlers that make cancelled() true (a second signal kills at once).
     static void installInterruptHandler();
 
 private:

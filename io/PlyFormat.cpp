@@ -230,6 +230,9 @@ SurfaceMesh readPly(const std::string& path, std::string_view data) {
             mesh.triangles.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(e.count, kMaxElements)));
             sawFaces = true;
         }
+        // An element without properties holds no bytes whatever its count: nothing to read (a
+        // count of 10^18 would otherwise be a loop of 10^18 empty iterations).
+        if (e.properties.empty()) continue;
         for (std::uint64_t n = 0; n < e.count; ++n) {
             body.at(e.name, n);
             for (std::size_t i = 0; i < e.properties.size(); ++i) {

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -32,6 +33,8 @@ Vec3 unitAxis(const std::string& path, const std::string& key, const nlohmann::j
     const Vec3 d = point(path, key, tooth, name) - centre;
     const double length = d.norm();
     if (!(length > 1e-9)) throw Error(path, "tooth " + key + ": axis \"" + name + "\" has zero length");
+    // Finite end points can still be 1e308 apart: the difference overflows and would divide to NaN.
+    if (!std::isfinite(length)) throw Error(path, "tooth " + key + ": axis \"" + name + "\" is too long (not finite)");
     return d / length;
 }
 
@@ -40,9 +43,15 @@ Vec3 unitAxis(const std::string& path, const std::string& key, const nlohmann::j
 std::map<int, ToothAxes> readToothAxes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path, "cannot open tooth axes file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parseToothAxes(text.str(), path);
+}
+
+std::map<int, ToothAxes> parseToothAxes(const std::string& text, const std::string& path) {
     nlohmann::json root;
     try {
-        root = nlohmann::json::parse(in);
+        root = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw Error(path, std::string("invalid JSON: ") + e.what());
     }

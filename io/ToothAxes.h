@@ -20,6 +20,9 @@ struct ToothAxes {
 /// Throws Error naming the file for malformed JSON, missing keys, non-numeric or zero-length axes.
 std::map<int, ToothAxes> readToothAxes(const std::string& path);
 
+/// readToothAxes on JSON text held in memory; `name` names it in messages. Throws as readToothAxes.
+std::map<int, ToothAxes> parseToothAxes(const std::string& text, const std::string& name);
+
 /// Writes the same shape (atomically).
 void writeToothAxes(const std::map<int, ToothAxes>& axes, const std::string& path);
 

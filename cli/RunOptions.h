@@ -1,0 +1,49 @@
+// The options of a whole run (`jawmesh run`, `batch`): defaults, the --config JSON file over them,
+// and the JSON recorded in run.json (the same keys), so a run can be repeated from its record.
+#pragma once
+
+#include "filters/ExtractInterfaces.h"
+#include "filters/SimplifyInterfaces.h"
+#include "io/Case.h"
+#include "levelset/CarveGaps.h"
+#include "tet/Tetrahedralize.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace jawmesh {
+
+struct RunOptions {
+    double voxelSizeMm = 0.05;     ///< level-set voxel; the PDL needs >= 4 voxels across
+    double bandVoxels = 3.0;       ///< narrow-band half width of the input level sets
+    LoadOptions load;
+    CarveOptions carve;
+    ExtractOptions extract;
+    SimplifyOptions simplify;
+    TetOptions tet;
+    bool writeLevelSets = false;   ///< also write <out>/<jaw>/levelsets/*.vdb
+    std::string fromVdb;           ///< resume from a carved label field folder instead of surfaces
+    /// Refuse the jaw up front when its memory estimate (batch/MemoryEstimate.h) exceeds this many
+    /// bytes; 0: no check. Where the run happens, not what it computes: not in runOptionsToJson.
+    std::uint64_t memoryLimitBytes = 0;
+};
+
+/// Default options for jaws (mesh sizes in mm chosen for the published jaw models' element counts).
+RunOptions defaultRunOptions();
+
+/// Reads a --config JSON file over `options` (keys as in runOptionsToJson); unknown keys are an
+/// Error naming the file and key, so a typo never silently falls back to a default; so are wrong
+/// types and values out of range.
+void applyRunConfig(const std::string& path, RunOptions& options);
+
+/// The options as JSON, as recorded in run.json (and accepted by applyRunConfig).
+nlohmann::json runOptionsToJson(const RunOptions& options);
+
+/// applyRunConfig on JSON text held in memory; `name` names it in messages (what the fuzzer and
+/// applyRunConfig use). Throws Error(name, reason) for invalid JSON, unknown keys, wrong value
+/// types and out-of-range values (e.g. a voxel of 0 mm, a PDL ratio above 1).
+void applyRunConfigText(const std::string& text, const std::string& name, RunOptions& options);
+
+}  // namespace jawmesh
