@@ -19,13 +19,21 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Starts a default-options run (minutes: still reading or making level sets after a second),
-/// sends `signal` after a second and returns the exit status once it has stopped.
+/// sends `signal` a second after the start (once its staging folder exists) and checks how it stopped.
 void expectCleanStop(int signal, const std::string& name) {
     const fs::path dir = scratchDir(name);
     ASSERT_EQ(runJawmesh("-q phantom " + (dir / "case").string() + " --teeth 2", dir / "phantom.log").exitCode, 0);
     const fs::path out = dir / "out";
+    const auto launched = std::chrono::steady_clock::now();
     const int pid = startChild({JAWMESH_BINARY, "run", (dir / "case").string(), "-o", out.string()}, (dir / "run.log").string());
-    std::this_thread::sleep_for(std::chrono::seconds(1));
+    // The run is in flight, writing into its staging folder, when the signal comes.
+    bool staging = false;
+    while (!staging && std::chrono::steady_clock::now() - launched < std::chrono::seconds(30)) {
+        staging = !leftoversUnder(dir).empty();
+        if (!staging) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    EXPECT_TRUE(staging) << "no staging folder appeared";
+    std::this_thread::sleep_until(launched + std::chrono::seconds(1));
     ASSERT_EQ(::kill(pid, signal), 0);
     int status = 0;
     const auto start = std::chrono::steady_clock::now();

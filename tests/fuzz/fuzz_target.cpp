@@ -1,7 +1,9 @@
 // A libFuzzer executable for the reader named by JAWMESH_FUZZ_TARGET (tests/fuzz/FuzzTargets.h).
 #include "FuzzTargets.h"
 
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 
 namespace {
 const jawmesh::fuzz::Target& target() {

@@ -2,7 +2,10 @@
 // (tests/fuzz/regressions/<target>/) through the same entries the fuzzers call
 // (tests/fuzz/FuzzTargets.h): each must be read or refused with jawmesh::Error, never crash, throw
 // anything else or give an invalid result. Runs in the normal (and sanitizer) test sets.
+#include "cli/RunOptions.h"
 #include "fuzz/FuzzTargets.h"
+#include "io/MeshIO.h"
+#include "io/ToothAxes.h"
 #include "io/IoTestUtil.h"
 
 #include <gtest/gtest.h>
