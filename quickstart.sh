@@ -42,11 +42,13 @@ build() {
   cmake --build build -j "$(nproc)"
 }
 
-# Sanitizer build: -O1 keeps it fast to build and to run; debug line tables for the reports.
+# Sanitizer build: -O1 keeps it fast to build and to run; debug line tables for the reports. Only
+# the binary and the quick test executables (no slow_* suites, no benchmarks).
+SANITIZE_TARGETS=(jawmesh test_core test_io test_levelset test_filters test_tet test_fe test_batch test_cli)
 sanitize_build() {
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DJAWMESH_SANITIZE=ON \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" > /dev/null
-  cmake --build build-asan -j "$(nproc)"
+  cmake --build build-asan -j "$(nproc)" --target "${SANITIZE_TARGETS[@]}"
 }
 
 case "${1:-}" in

@@ -57,7 +57,10 @@ double surfaceAreaMm2(const SurfaceMesh& mesh) {
 }
 
 std::uint64_t estimateRunMemoryBytes(double inputAreaMm2, double voxelMm) {
-    return static_cast<std::uint64_t>(kBaseBytes + kBytesPerSurfaceVoxel * inputAreaMm2 / (voxelMm * voxelMm));
+    const double bytes = kBaseBytes + kBytesPerSurfaceVoxel * inputAreaMm2 / (voxelMm * voxelMm);
+    // A voxel of 1e-9 mm gives 1e24 bytes: saturate, the conversion of a larger double is undefined.
+    constexpr double kMax = 1.8e19;
+    return !(bytes < kMax) ? std::numeric_limits<std::uint64_t>::max() : static_cast<std::uint64_t>(bytes);
 }
 
 namespace {

@@ -33,10 +33,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Share of the smaller tooth's volume two teeth may have in common before the case is refused
-/// (insideOverlapFraction): real contacts stay at a few percent; a tooth exported twice is near 100%.
-constexpr double kHeavyOverlapFraction = 0.3;
-
 /// Times named steps into run.json's "stages" (seconds and peak memory after each step).
 class StageLog {
 public:
@@ -98,7 +94,7 @@ JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, d
         for (auto b = std::next(a); b != sets.teeth.end(); ++b) {
             progress.checkCancelled();
             const double shared = insideOverlapFraction(*a->second, *b->second);
-            if (shared > kHeavyOverlapFraction)
+            if (shared > kHeavyToothOverlapFraction)
                 throw Error(toothSource(jawCase, b->first),
                             "overlaps " + toothSource(jawCase, a->first) + " by " +
                                 std::to_string(static_cast<int>(shared * 100 + 0.5)) +

@@ -7,6 +7,11 @@
 
 namespace jawmesh {
 
+/// Share of the smaller tooth's volume two teeth may have in common before a case is refused:
+/// teeth in contact share a few percent (the shared real teeth stay below it, tested in
+/// tests/levelset/slow_inside_overlap.cpp); a tooth exported twice shares nearly all of it.
+constexpr double kHeavyToothOverlapFraction = 0.3;
+
 /// Volume inside both a and b over the smaller of the two inside volumes, in [0, 1] (0 when
 /// either is empty). Inside is value < 0, inactive voxels and tiles included (sign of their value).
 /// Both grids must share one transform (the same voxel size). Cost: two interior masks, tile-aware.

@@ -20,6 +20,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <thread>
 
 namespace jawmesh {
@@ -199,6 +200,30 @@ TEST(BatchMemoryEstimate, GrowsWithAreaAndFinerVoxels) {
     EXPECT_LT(estimateRunMemoryBytes(1000, 0.1), estimateRunMemoryBytes(2000, 0.1));
     EXPECT_LT(estimateRunMemoryBytes(1000, 0.1), estimateRunMemoryBytes(1000, 0.05));
     EXPECT_GT(availableMemoryBytes(), 0u);
+    // Absurd voxels saturate instead of wrapping around to a small estimate.
+    EXPECT_EQ(estimateRunMemoryBytes(1000, 1e-12), std::numeric_limits<std::uint64_t>::max());
+}
+
+TEST(BatchMemoryEstimate, RequireMemoryFitsRefusesWithTheVoxelThatWouldFit) {
+    JawSurfaces jaw;
+    jaw.bone.vertices = {{0, 0, 0}, {100, 0, 0}, {0, 100, 0}};  // 5,000 mm^2
+    jaw.bone.triangles = {{0, 1, 2}};
+    const std::uint64_t needed = estimateJawMemoryBytes(jaw, 0.05);
+    EXPECT_EQ(needed, estimateRunMemoryBytes(5000, 0.05));
+    EXPECT_NO_THROW(requireMemoryFits(jaw, 0.05, needed, "case"));
+    EXPECT_NO_THROW(requireMemoryFits(jaw, 0.05, 0, "case"));  // unknown: no check
+    try {
+        requireMemoryFits(jaw, 0.05, needed / 4, "case/input/mandible");
+        ADD_FAILURE() << "no Error";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what.rfind("case/input/mandible: ", 0), 0u) << what;
+        const std::size_t at = what.find("a voxel of ", what.find("available"));
+        ASSERT_NE(at, std::string::npos) << what;
+        const double fits = std::stod(what.substr(at + 11));
+        EXPECT_GT(fits, 0.05);
+        EXPECT_LE(estimateJawMemoryBytes(jaw, fits), needed / 4) << what;  // the suggestion does fit
+    }
 }
 
 TEST(BatchChildProcess, ExitCodesCrashesPeakMemoryAndLogs) {
