@@ -23,7 +23,7 @@ ROBUSTNESS_PACKAGES=(clang libclang-rt-14-dev llvm)
 # Release build and 5-10x longer under ASan (the phantom run at default options, the batches, the
 # determinism and dirty-surface runs). What they exercise is the same code as the stage tests that
 # do run, and the Release quick set runs them all.
-SANITIZE_EXCLUDE="RunPhantom|BatchCommand|Determinism|BadInput.DirtySurfacesAreMeshed|EvalCommand"
+SANITIZE_EXCLUDE="RunPhantom|BatchCommand|Determinism|BadInput.DirtySurfacesAreMeshed"
 
 install_packages() {
   local missing=()
