@@ -38,7 +38,8 @@ void checkRanges(const std::string& name, const RunOptions& o) {
     requireRange(name, "surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm, 0, 1000);
     requireRange(name, "surface_min_angle_deg", o.simplify.minAngleDeg, 0, 59);
     requireRange(name, "surface_min_wedge_deg", o.simplify.minWedgeDeg, 0, 89);
-    requireRange(name, "tet_radius_edge", o.tet.radiusEdgeRatio, 1, 100, true);
+    // tet_radius_edge is checked where TetGen gets it (tet/Tetrahedralize.h): its Error there
+    // keeps the interface surface made so far, like any other TetGen failure.
     requireRange(name, "tet_min_dihedral_deg", o.tet.minDihedralDeg, 0, 60);
     requireRange(name, "tet_pdl_edge_mm", o.tet.pdlEdgeMm, 0, 1000);
     requireRange(name, "tet_tooth_edge_mm", o.tet.toothEdgeMm, 0, 1000);
