@@ -75,7 +75,7 @@ void runFe(const FeCliOptions& opt, const GlobalOptions& global) {
 
     const std::string inp = (jawDir / "simulation" / (scenario.name + ".inp")).string();
     if (!o.formats.count("inp") || !fs::exists(inp))
-        throw Error(inp, "--solve runs CalculiX on the .inp deck: add inp to --format (biting needs contact, not supported in .inp)");
+        throw Error(inp, "--solve runs CalculiX on the .inp deck: add inp to --format");
     if (!global.quiet) std::cerr << "solving " << inp << " with CalculiX...\n";
     const CalculixRun run = runCalculix(inp, opt.threads);
     nlohmann::json summary = calculixSummary(scenario, run, inp);

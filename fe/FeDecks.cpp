@@ -47,14 +47,10 @@ std::vector<std::string> writeScenarioDecks(const TetMesh& mesh, FeScenario& s, 
     const std::string dir = outJawDir + "/simulation/";
     std::vector<std::string> written;
     if (o.formats.count("inp")) {
-        if (s.contact) {
-            s.notes.push_back("no CalculiX deck: the " + s.name + " scenario needs contact (use feb or polyfem)");
-        } else {
-            CalculixOptions c;
-            c.order = o.order;
-            writeCalculixDeck(mesh, s, o.materials, dir + s.name + ".inp", c);
-            written.push_back(dir + s.name + ".inp");
-        }
+        CalculixOptions c;
+        c.order = o.order;
+        writeCalculixDeck(mesh, s, o.materials, dir + s.name + ".inp", c);
+        written.push_back(dir + s.name + ".inp");
     }
     if (o.formats.count("feb")) {
         FebioOptions f;

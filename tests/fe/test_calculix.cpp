@@ -2,16 +2,22 @@
 // Every value checked is read back from ccx's own .dat and .frd files.
 #include "fe/CalculixResults.h"
 #include "fe/CalculixWriter.h"
+#include "fe/ExteriorFaces.h"
 #include "fe/FeTestMeshes.h"
 #include "fe/QuadraticTets.h"
 #include "fe/RunCalculix.h"
 #include "fe/Scenario.h"
 #include "io/Error.h"
 #include "support/TestData.h"
+#include "tet/GridTetMesh.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <iostream>
+#include <set>
 #include <fstream>
 #include <sstream>
 
@@ -126,6 +132,90 @@ TEST(Calculix, SolvesQuadraticTetTippingWithSharedMidEdgeNodes) {
         EXPECT_LT(ratio, 3.0);
     }
     std::cout << "C3D10: " << r.summary["seconds"] << " s, tooth 24 moved " << r.summary["teeth"][0]["magnitude_mm"] << " mm\n";
+}
+
+/// One lower crown (tooth 24) on a mandible block and one upper crown (tooth 9) under a maxilla
+/// block, 0.2 mm apart: the smallest biting case.
+TetMesh twoCrownBite() {
+    return test::withoutOutside(test::gridTetMesh(8, 4, 28, 0.5, [](const Vec3& p) -> Label {
+        const bool lowerCrown = p.x() > 1 && p.x() < 3 && p.y() > 0.5 && p.y() < 1.5 && p.z() > 5 && p.z() < 6.4;
+        const bool upperCrown = p.x() > 1 && p.x() < 3 && p.y() > 0.5 && p.y() < 1.5 && p.z() > 6.6 && p.z() < 8;
+        if (lowerCrown) return toothLabel(24);
+        if (upperCrown) return toothLabel(9);
+        return p.z() < 5 ? kMandibleBoneLabel : p.z() > 8 ? kMaxillaBoneLabel : kOutsideLabel;
+    }));
+}
+
+TEST(Calculix, BitingDeckHasCrownSurfacesOnExteriorFacesAndAContactPair) {
+    const TetMesh mesh = twoCrownBite();
+    const FeScenario s = bitingScenario(mesh);
+    const auto dir = test::scratchDir("fe-ccx-biting-deck");
+    writeCalculixDeck(mesh, s, MaterialTable(), (dir / "biting.inp").string());
+    const std::string deck = readText((dir / "biting.inp").string());
+    for (const char* needle : {"*SURFACE, NAME=crowns_mandible, TYPE=ELEMENT", "*SURFACE, NAME=crowns_maxilla, TYPE=ELEMENT",
+                               "*SURFACE INTERACTION, NAME=occlusal_contact", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
+                               "*CONTACT PAIR, INTERACTION=occlusal_contact, TYPE=SURFACE TO SURFACE\ncrowns_mandible, crowns_maxilla",
+                               "fixed_top_maxilla, 3, 3", "base_mandible, 1, 1", "base_mandible, 2, 2", "*CLOAD"})
+        EXPECT_NE(deck.find(needle), std::string::npos) << needle;
+    EXPECT_EQ(deck.find("base_mandible, 3, 3"), std::string::npos);  // free vertically
+    // Every surface line names a face (by Abaqus's S1..S4 numbering of the element's own nodes)
+    // that is an exterior face of a tooth of that jaw.
+    std::set<std::array<std::int32_t, 3>> exteriorTooth;
+    for (const ExteriorFace& f : exteriorFaces(mesh)) {
+        if (labelKind(f.label) != LabelKind::Tooth) continue;
+        std::array<std::int32_t, 3> key = f.nodes;
+        std::sort(key.begin(), key.end());
+        exteriorTooth.insert(key);
+    }
+    const std::array<std::array<int, 3>, 4> abaqusFaces = {{{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}}};
+    std::istringstream in(deck);
+    std::string line, surface;
+    std::map<std::string, std::size_t> faceCount;
+    while (std::getline(in, line)) {
+        if (line.rfind("*SURFACE, NAME=", 0) == 0) {
+            surface = line.substr(15, line.find(',', 15) - 15);
+            continue;
+        }
+        if (line.empty() || line[0] == '*') surface.clear();
+        if (surface.empty() || line.empty() || line[0] == '*') continue;
+        const std::int32_t element = std::stoi(line.substr(0, line.find(',')));
+        const int face = std::stoi(line.substr(line.find('S') + 1));
+        ASSERT_GE(face, 1);
+        ASSERT_LE(face, 4);
+        const Tet& tet = mesh.tets[static_cast<std::size_t>(element - 1)];
+        std::array<std::int32_t, 3> key;
+        for (std::size_t i = 0; i < 3; ++i) key[i] = tet[static_cast<std::size_t>(abaqusFaces[static_cast<std::size_t>(face - 1)][i])];
+        std::sort(key.begin(), key.end());
+        EXPECT_TRUE(exteriorTooth.count(key)) << line;
+        const Label label = mesh.labels[static_cast<std::size_t>(element - 1)];
+        EXPECT_EQ("crowns_" + jawName(jawOfTooth(labelUnn(label))), surface);
+        ++faceCount[surface];
+    }
+    EXPECT_EQ(faceCount["crowns_mandible"] + faceCount["crowns_maxilla"], exteriorTooth.size());
+}
+
+// The biting deck runs in CalculiX: it reads the contact definitions, and on this block, where the
+// crowns are 0.2 mm apart, the mandible rises until they touch and carries the 200 N through them.
+TEST(Calculix, SolvesTheBitingDeckWithContactOnTwoCrowns) {
+    ASSERT_FALSE(findCalculix().empty()) << "ccx missing: install the Debian package calculix-ccx (quickstart.sh does)";
+    const TetMesh mesh = twoCrownBite();
+    const FeScenario s = bitingScenario(mesh);
+    const auto dir = test::scratchDir("fe-ccx-biting");
+    const std::string inp = (dir / "biting.inp").string();
+    writeCalculixDeck(mesh, s, MaterialTable(), inp);
+    const CalculixRun run = runCalculix(inp);
+    const nlohmann::json summary = calculixSummary(s, run, inp);
+    std::cout << summary.dump(2) << "\n";
+    EXPECT_EQ(readText(run.logPath).find("*ERROR"), std::string::npos) << readText(run.logPath);
+    ASSERT_EQ(run.status, "completed") << run.message;
+    const auto frd = readCalculixFrdDisplacements((dir / "biting.frd").string());
+    // The lower crown's top rose by about the 0.2 mm gap (contact is a penalty: a little more).
+    double lowerTopRise = 0;
+    for (std::size_t v = 0; v < mesh.nodes.size(); ++v)
+        if (std::abs(mesh.nodes[v].z() - 6.5) < 1e-9 && mesh.nodes[v].x() > 1 && mesh.nodes[v].x() < 3)
+            lowerTopRise = std::max(lowerTopRise, frd.at(static_cast<std::int32_t>(v + 1)).z());
+    EXPECT_GT(lowerTopRise, 0.15);
+    EXPECT_LT(lowerTopRise, 0.5);
 }
 
 TEST(Calculix, ReadersRejectMissingAndMalformedOutput) {
