@@ -16,9 +16,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <set>
-#include <fstream>
 #include <sstream>
 
 namespace jawmesh {
