@@ -78,7 +78,7 @@ void runFe(const FeCliOptions& opt, const GlobalOptions& global) {
         throw Error(inp, "--solve runs CalculiX on the .inp deck: add inp to --format");
     if (!global.quiet) std::cerr << "solving " << inp << " with CalculiX...\n";
     const CalculixRun run = runCalculix(inp, opt.threads);
-    nlohmann::json summary = calculixSummary(scenario, run, inp);
+    nlohmann::json summary = calculixSummary(scenario, run, inp, &mesh);
     summary["deck"] = inp;
     summary["order"] = opt.order;
     const std::string summaryPath = (jawDir / "simulation" / (scenario.name + "_calculix_summary.json")).string();

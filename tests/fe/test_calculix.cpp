@@ -47,7 +47,7 @@ Solved solveTipping(int order, const std::string& dirName) {
     writeCalculixDeck(mesh, s, MaterialTable(), inp, o);
     const CalculixRun run = runCalculix(inp);
     Solved r;
-    r.summary = calculixSummary(s, run, inp);
+    r.summary = calculixSummary(s, run, inp, &mesh);
     if (run.status == "completed") {
         r.frd = readCalculixFrdDisplacements((dir / "tipping.frd").string());
         r.dat = readCalculixDat((dir / "tipping.dat").string());
@@ -74,7 +74,15 @@ void expectTippingResult(const Solved& r, std::size_t expectedNodes) {
         EXPECT_GT(t["displacement_mm"][1].get<double>(), 1e-5);
         const Vec3 fromFrd = r.frd.at(t["load_node"].get<std::int32_t>());
         EXPECT_NEAR(fromFrd.y(), t["displacement_mm"][1].get<double>(), 1e-5 * std::max(1.0, std::abs(fromFrd.y())) + 1e-9);
+        // The load point is a node of the tooth: the tooth's largest displacement is at least its.
+        EXPECT_GE(t["tooth_max_displacement_mm"].get<double>(), t["magnitude_mm"].get<double>() * (1 - 1e-6));
     }
+    // All PDL elements together: both PDLs' elements, median below the 99.99th percentile.
+    const auto& pdl = r.summary["pdl"];
+    EXPECT_EQ(pdl["elements"].get<std::size_t>(),
+              r.summary["regions"]["pdl_24"]["elements"].get<std::size_t>() + r.summary["regions"]["pdl_25"]["elements"].get<std::size_t>());
+    EXPECT_GT(pdl["median_von_mises_mpa"].get<double>(), 0.0);
+    EXPECT_GE(pdl["p9999_over_median"].get<double>(), 1.0);
     // Fixed base nodes stay put.
     EXPECT_EQ(r.frd.at(1).norm(), 0.0);  // node 1 is the grid origin, on the base
     // Stresses read back for every region, positive and finite.
