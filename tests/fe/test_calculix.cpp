@@ -142,11 +142,11 @@ TEST(Calculix, SolvesQuadraticTetTippingWithSharedMidEdgeNodes) {
     std::cout << "C3D10: " << r.summary["seconds"] << " s, tooth 24 moved " << r.summary["teeth"][0]["magnitude_mm"] << " mm\n";
 }
 
-/// One lower crown (tooth 24) on a mandible block and one upper crown (tooth 9) under a maxilla
-/// block, 0.2 mm apart: the smallest biting case.
+/// One lower crown (tooth 24, z up to 6) on a mandible block and one upper crown (tooth 9, z from
+/// 6.5) under a maxilla block, 0.5 mm apart: the smallest biting case.
 TetMesh twoCrownBite() {
     return test::withoutOutside(test::gridTetMesh(8, 4, 28, 0.5, [](const Vec3& p) -> Label {
-        const bool lowerCrown = p.x() > 1 && p.x() < 3 && p.y() > 0.5 && p.y() < 1.5 && p.z() > 5 && p.z() < 6.4;
+        const bool lowerCrown = p.x() > 1 && p.x() < 3 && p.y() > 0.5 && p.y() < 1.5 && p.z() > 5 && p.z() < 6.1;
         const bool upperCrown = p.x() > 1 && p.x() < 3 && p.y() > 0.5 && p.y() < 1.5 && p.z() > 6.6 && p.z() < 8;
         if (lowerCrown) return toothLabel(24);
         if (upperCrown) return toothLabel(9);
@@ -203,7 +203,7 @@ TEST(Calculix, BitingDeckHasCrownSurfacesOnExteriorFacesAndAContactPair) {
 }
 
 // The biting deck runs in CalculiX: it reads the contact definitions, and on this block, where the
-// crowns are 0.2 mm apart, the mandible rises until they touch and carries the 200 N through them.
+// crowns are 0.5 mm apart, the mandible rises until they touch and carries the 200 N through them.
 TEST(Calculix, SolvesTheBitingDeckWithContactOnTwoCrowns) {
     ASSERT_FALSE(findCalculix().empty()) << "ccx missing: install the Debian package calculix-ccx (quickstart.sh does)";
     const TetMesh mesh = twoCrownBite();
@@ -217,13 +217,13 @@ TEST(Calculix, SolvesTheBitingDeckWithContactOnTwoCrowns) {
     EXPECT_EQ(readText(run.logPath).find("*ERROR"), std::string::npos) << readText(run.logPath);
     ASSERT_EQ(run.status, "completed") << run.message;
     const auto frd = readCalculixFrdDisplacements((dir / "biting.frd").string());
-    // The lower crown's top rose by about the 0.2 mm gap (contact is a penalty: a little more).
+    // The lower crown's top rose by about the 0.5 mm gap (contact is a penalty: a little more).
     double lowerTopRise = 0;
     for (std::size_t v = 0; v < mesh.nodes.size(); ++v)
-        if (std::abs(mesh.nodes[v].z() - 6.5) < 1e-9 && mesh.nodes[v].x() > 1 && mesh.nodes[v].x() < 3)
+        if (std::abs(mesh.nodes[v].z() - 6.0) < 1e-9 && mesh.nodes[v].x() > 1 && mesh.nodes[v].x() < 3)
             lowerTopRise = std::max(lowerTopRise, frd.at(static_cast<std::int32_t>(v + 1)).z());
-    EXPECT_GT(lowerTopRise, 0.15);
-    EXPECT_LT(lowerTopRise, 0.5);
+    EXPECT_GT(lowerTopRise, 0.4);
+    EXPECT_LT(lowerTopRise, 0.8);
 }
 
 TEST(Calculix, ReadersRejectMissingAndMalformedOutput) {

@@ -40,11 +40,11 @@ TEST(FeCommand, WritesDecksSolvesWithCalculixAndSummarises) {
 }
 
 /// The jaws of the two-crown bite (tests/fe/test_calculix.cpp) as two meshes, as `jawmesh run`
-/// writes them: the mandible with tooth 24 below z = 6.5, the maxilla with tooth 9 above.
+/// writes them: the mandible with tooth 24 up to z = 6, the maxilla with tooth 9 from z = 6.5.
 TetMesh biteHalf(Jaw jaw) {
     return test::withoutOutside(test::gridTetMesh(8, 4, 28, 0.5, [jaw](const Vec3& p) -> Label {
         const bool crownColumn = p.x() > 1 && p.x() < 3 && p.y() > 0.5 && p.y() < 1.5;
-        if (jaw == Jaw::Mandible) return p.z() < 5 ? kMandibleBoneLabel : crownColumn && p.z() < 6.4 ? toothLabel(24) : kOutsideLabel;
+        if (jaw == Jaw::Mandible) return p.z() < 5 ? kMandibleBoneLabel : crownColumn && p.z() < 6.1 ? toothLabel(24) : kOutsideLabel;
         return p.z() > 8 ? kMaxillaBoneLabel : crownColumn && p.z() > 6.6 ? toothLabel(9) : kOutsideLabel;
     }));
 }
