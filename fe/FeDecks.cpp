@@ -1,6 +1,7 @@
 #include "fe/FeDecks.h"
 
 #include "fe/CalculixWriter.h"
+#include "fe/CloseBite.h"
 #include "fe/FebioWriter.h"
 #include "fe/PolyfemWriter.h"
 #include "fe/ToothAxesFromShape.h"
@@ -40,10 +41,12 @@ std::map<int, ToothAxes> axesForMesh(const TetMesh& mesh, const std::map<int, To
     return axes;
 }
 
-std::vector<std::string> writeScenarioDecks(const TetMesh& mesh, FeScenario& s, const std::string& outJawDir,
+std::vector<std::string> writeScenarioDecks(const TetMesh& given, FeScenario& s, const std::string& outJawDir,
                                             const FeDeckOptions& o) {
     for (const std::string& f : o.formats)
         if (f != "feb" && f != "polyfem" && f != "inp") throw Error("unknown deck format '" + f + "' (feb, polyfem, inp)");
+    const TetMesh closed = s.mandibleOffsetMm.isZero() ? TetMesh() : withMandibleMoved(given, s.mandibleOffsetMm);
+    const TetMesh& mesh = s.mandibleOffsetMm.isZero() ? given : closed;
     const std::string dir = outJawDir + "/simulation/";
     std::vector<std::string> written;
     if (o.formats.count("inp")) {
