@@ -117,6 +117,26 @@ bool labialFaceNormal(const SurfaceMesh& mesh, double orientation, const Vec3& c
     return true;
 }
 
+/// The frame of a tooth for a long axis `occlusal`: mesial-distal along `distal` (made
+/// perpendicular), labial completing it away from the arch centre, and the crown centre (volume
+/// centroid of the occlusal crownFraction of the tooth's length).
+ToothAxes frameAndCrownCentre(const SurfaceMesh& mesh, const Shape& s, const Vec3& occlusal, const Vec3& distal,
+                              const Vec3& archCentre, double crownFraction) {
+    ToothAxes a;
+    a.occlusal = occlusal;
+    a.mesialDistal = (distal - distal.dot(occlusal) * occlusal).normalized();
+    a.labial = a.occlusal.cross(a.mesialDistal).normalized();
+    if (a.labial.dot(s.centroid - archCentre) < 0) a.labial = -a.labial;
+    double top = -std::numeric_limits<double>::infinity(), bottom = -top;
+    for (const Vec3& v : mesh.vertices) {
+        const double h = (v - s.centroid).dot(a.occlusal);
+        top = std::max(top, h), bottom = std::min(bottom, h);
+    }
+    const Vec3 cut = s.centroid + (top - crownFraction * (top - bottom)) * a.occlusal;
+    a.crownCentre = clippedCentroid(mesh, cut, a.occlusal, s.orientation);
+    return a;
+}
+
 }  // namespace
 
 double angleDeg(const Vec3& a, const Vec3& b) {
@@ -184,24 +204,9 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
             along = eig.eigenvectors().col(1);
             if (notes) notes->push_back("tooth " + std::to_string(unn) + ": no neighbours, mesial-distal and labial senses guessed");
         }
-        // The frame and crown centre for a long axis.
+        const Vec3 distal = unn < midline ? Vec3(-along) : along;  // away from the midline
         auto frameFor = [&](const Vec3& occlusal) {
-            ToothAxes a;
-            a.occlusal = occlusal;
-            Vec3 tangent = along - along.dot(occlusal) * occlusal;
-            tangent.normalize();
-            a.mesialDistal = unn < midline ? Vec3(-tangent) : tangent;  // distal = away from the midline
-            a.labial = a.occlusal.cross(a.mesialDistal).normalized();
-            if (a.labial.dot(s.centroid - archCentre) < 0) a.labial = -a.labial;
-            // Crown: the occlusal part of the tooth; its volume centroid is the crown centre.
-            double top = -std::numeric_limits<double>::infinity(), bottom = -top;
-            for (const Vec3& v : mesh.vertices) {
-                const double h = (v - s.centroid).dot(a.occlusal);
-                top = std::max(top, h), bottom = std::min(bottom, h);
-            }
-            const Vec3 cut = s.centroid + (top - o.crownFraction * (top - bottom)) * a.occlusal;
-            a.crownCentre = clippedCentroid(mesh, cut, a.occlusal, s.orientation);
-            return a;
+            return frameAndCrownCentre(mesh, s, occlusal, distal, archCentre, o.crownFraction);
         };
         const Vec3 anatomical = sense * s.longAxis;
         ToothAxes a = frameFor(anatomical);
