@@ -2,6 +2,7 @@
 // CalculiX formats, optionally solved with CalculiX (ccx) and summarised.
 #include "cli/Commands.h"
 #include "fe/FeDecks.h"
+#include "fe/JoinMeshes.h"
 #include "fe/RunCalculix.h"
 #include "fe/Scenario.h"
 #include "io/AtomicFile.h"
@@ -12,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -38,7 +40,20 @@ void runFe(const FeCliOptions& opt, const GlobalOptions& global) {
     const std::string jaw = (jawDir.filename().empty() ? jawDir.parent_path() : jawDir).filename().string();
     const std::string meshPath = (jawDir / "volumetric_meshes" / (jaw + ".msh")).string();
     if (!fs::exists(meshPath)) throw Error(meshPath, "no volume mesh here (run `jawmesh run` first; expected <out>/<jaw>/volumetric_meshes/<jaw>.msh)");
-    const TetMesh mesh = readGmsh(meshPath);
+    TetMesh mesh = readGmsh(meshPath);
+    if (opt.scenario == "biting" && (jaw == "mandible" || jaw == "maxilla")) {
+        // Each jaw is meshed in its own folder: biting takes the other jaw from the sibling folder.
+        const std::string other = jaw == "mandible" ? "maxilla" : "mandible";
+        const fs::path otherPath = (jawDir.filename().empty() ? jawDir.parent_path() : jawDir).parent_path() / other /
+                                   "volumetric_meshes" / (other + ".msh");
+        const bool hasOther = std::find(mesh.labels.begin(), mesh.labels.end(), boneLabel(jaw == "mandible" ? Jaw::Maxilla : Jaw::Mandible)) !=
+                              mesh.labels.end();
+        if (!hasOther) {
+            if (!fs::exists(otherPath))
+                throw Error(otherPath.string(), "the biting scenario needs both jaws: mesh the " + other + " too (`jawmesh run` writes it here)");
+            mesh = joinMeshes(mesh, readGmsh(otherPath.string()));
+        }
+    }
 
     FeDeckOptions o;
     o.formats = {opt.formats.begin(), opt.formats.end()};
@@ -80,10 +95,10 @@ void runFe(const FeCliOptions& opt, const GlobalOptions& global) {
 
     const std::string inp = (jawDir / "simulation" / (scenario.name + ".inp")).string();
     if (!o.formats.count("inp") || !fs::exists(inp))
-        throw Error(inp, "--solve runs CalculiX on the .inp deck: add inp to --format (biting needs contact, not supported in .inp)");
+        throw Error(inp, "--solve runs CalculiX on the .inp deck: add inp to --format");
     if (!global.quiet) std::cerr << "solving " << inp << " with CalculiX...\n";
     const CalculixRun run = runCalculix(inp, opt.threads);
-    nlohmann::json summary = calculixSummary(scenario, run, inp);
+    nlohmann::json summary = calculixSummary(scenario, run, inp, &mesh);
     summary["deck"] = inp;
     summary["order"] = opt.order;
     const std::string summaryPath = (jawDir / "simulation" / (scenario.name + "_calculix_summary.json")).string();
@@ -98,8 +113,8 @@ void addFeCommand(CLI::App& app, GlobalOptions& global) {
         "fe",
         "FE decks of a meshed jaw into <out>/<jaw>/simulation/: <scenario>.feb (FEBio 4), <scenario>_polyfem.json "
         "(+ .msh and selections), <scenario>.inp (CalculiX/Abaqus). Tipping: bone base fixed, 1 N lingual per tooth "
-        "over a labial crown patch; biting (both jaws in one mesh): maxilla top fixed, 200 N up on the mandible base, "
-        "contact. --solve runs ccx and writes <scenario>_calculix_summary.json.");
+        "over a labial crown patch; biting (both jaws: the other jaw's mesh is taken from the sibling folder "
+        "<out>/<other jaw>): maxilla top fixed, 200 N up on the mandible base, contact between the crowns. --solve runs ccx and writes <scenario>_calculix_summary.json.");
     cmd->add_option("jaw_dir", opt->jawDir, "A jaw folder of a run: <out>/<jaw>")->required()->check(CLI::ExistingDirectory);
     cmd->add_option("--scenario", opt->scenario, "tipping | biting")->check(CLI::IsMember({"tipping", "biting"}))->capture_default_str();
     cmd->add_option("--format", opt->formats, "Comma-separated: feb,polyfem,inp")

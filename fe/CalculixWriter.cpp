@@ -1,6 +1,7 @@
 #include "fe/CalculixWriter.h"
 
 #include "fe/ConsistentNodalForces.h"
+#include "fe/ExteriorFaces.h"
 #include "fe/QuadraticTets.h"
 #include "io/AtomicFile.h"
 #include "io/Error.h"
@@ -19,6 +20,13 @@ void writeIdList(std::ostream& out, const std::vector<std::int32_t>& ids) {
     }
 }
 
+/// Abaqus face label of a tet face given by the node it lies opposite (ExteriorFace::local):
+/// S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1; C3D10 numbers its faces alike.
+const char* abaqusTetFace(std::int32_t oppositeNode) {
+    static const char* const kFace[4] = {"S3", "S4", "S2", "S1"};
+    return kFace[static_cast<std::size_t>(oppositeNode)];
+}
+
 }  // namespace
 
 std::string calculixLoadPointSet(int unn) { return "loadpt_tooth_" + std::to_string(unn); }
@@ -26,9 +34,6 @@ std::string calculixLoadPointSet(int unn) { return "loadpt_tooth_" + std::to_str
 void writeCalculixDeck(const TetMesh& mesh, const FeScenario& s, const MaterialTable& materials,
                        const std::string& path, const CalculixOptions& o) {
     if (o.order != 1 && o.order != 2) throw Error(path, "element order must be 1 (C3D4) or 2 (C3D10)");
-    if (s.contact)
-        throw Error(path, "the " + s.name + " scenario needs contact, which the CalculiX writer does not set up; "
-                          "write it as feb or polyfem");
     if (mesh.labels.size() != mesh.tets.size()) throw Error(path, "one label per tet expected");
     EdgeMidNodes mids;
     MixedTetMesh quadratic;
@@ -39,6 +44,15 @@ void writeCalculixDeck(const TetMesh& mesh, const FeScenario& s, const MaterialT
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         labelName(mesh.labels[t]);  // throws for unknown labels before anything is written
         tetsOf[mesh.labels[t]].push_back(t);
+    }
+    // Contact: the exposed crowns of each jaw, as faces of their elements.
+    std::map<Jaw, std::vector<const ExteriorFace*>> crowns;
+    std::vector<ExteriorFace> exterior;
+    if (s.contact) {
+        exterior = exteriorFaces(mesh);
+        for (const ExteriorFace& f : exterior)
+            if (labelKind(f.label) == LabelKind::Tooth) crowns[jawOfTooth(labelUnn(f.label))].push_back(&f);
+        if (crowns.size() != 2) throw Error(path, "the " + s.name + " scenario needs the crowns of both jaws for contact");
     }
     std::vector<char> used(nodes.size(), 0);
     for (const Tet& t : mesh.tets)
@@ -99,8 +113,18 @@ void writeCalculixDeck(const TetMesh& mesh, const FeScenario& s, const MaterialT
         }
         for (const auto& [label, tets] : tetsOf)
             out << "*SOLID SECTION, ELSET=" << labelName(label) << ", MATERIAL=" << materialName(labelKind(label)) << "\n";
+        if (s.contact) {
+            for (const auto& [jaw, faces] : crowns) {
+                out << "*SURFACE, NAME=crowns_" << jawName(jaw) << ", TYPE=ELEMENT\n";
+                for (const ExteriorFace* f : faces) out << f->tet + 1 << ", " << abaqusTetFace(f->local) << "\n";
+            }
+            // Frictionless penalty contact; the mandible's crowns are the slave side.
+            out << "*SURFACE INTERACTION, NAME=occlusal_contact\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+                << o.contactStiffnessPerModulus * materials.tooth.youngMpa << "\n"
+                << "*CONTACT PAIR, INTERACTION=occlusal_contact, TYPE=SURFACE TO SURFACE\ncrowns_mandible, crowns_maxilla\n";
+        }
         out << "*STEP, NLGEOM, INC=" << o.maxIncrements << "\n*STATIC\n"
-            << o.initialIncrement << ", 1.0, 1e-6, 1.0\n";
+            << (s.contact ? o.contactInitialIncrement : o.initialIncrement) << ", 1.0, 1e-6, 1.0\n";
         out << "*BOUNDARY\n";
         for (const FixedSet& f : s.fixed)
             for (int d = 0; d < 3; ++d)

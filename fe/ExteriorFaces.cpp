@@ -11,7 +11,7 @@ std::vector<ExteriorFace> exteriorFaces(const TetMesh& mesh) {
         if (adjacency.groupSize(g) != 1) continue;
         const TetFaceRef& f = adjacency.faces[static_cast<std::size_t>(adjacency.groupStart[g])];
         const auto tet = static_cast<std::size_t>(f.tet);
-        faces.push_back({outwardFace(mesh.tets[tet], f.local), mesh.labels[tet]});
+        faces.push_back({outwardFace(mesh.tets[tet], f.local), mesh.labels[tet], f.tet, f.local});
     }
     return faces;
 }

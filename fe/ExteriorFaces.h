@@ -12,6 +12,8 @@ namespace jawmesh {
 struct ExteriorFace {
     Tri nodes;      ///< node indices, outward (normal out of the mesh by the right-hand rule)
     Label label;    ///< label of the tet the face belongs to
+    std::int32_t tet = -1;    ///< that tet's index
+    std::int32_t local = -1;  ///< the face opposite the tet's node `local` (0..3, tet/TetFaceAdjacency.h)
 };
 
 /// Every exterior face of `mesh`, in the order of tetFaceAdjacency's groups (sorted by node keys,

@@ -1,6 +1,7 @@
 #include "fe/FeDecks.h"
 
 #include "fe/CalculixWriter.h"
+#include "fe/CloseBite.h"
 #include "fe/FebioWriter.h"
 #include "fe/PolyfemWriter.h"
 #include "fe/ToothAxesFromShape.h"
@@ -40,21 +41,19 @@ std::map<int, ToothAxes> axesForMesh(const TetMesh& mesh, const std::map<int, To
     return axes;
 }
 
-std::vector<std::string> writeScenarioDecks(const TetMesh& mesh, FeScenario& s, const std::string& outJawDir,
+std::vector<std::string> writeScenarioDecks(const TetMesh& given, FeScenario& s, const std::string& outJawDir,
                                             const FeDeckOptions& o) {
     for (const std::string& f : o.formats)
         if (f != "feb" && f != "polyfem" && f != "inp") throw Error("unknown deck format '" + f + "' (feb, polyfem, inp)");
+    const TetMesh closed = s.mandibleOffsetMm.isZero() ? TetMesh() : withMandibleMoved(given, s.mandibleOffsetMm);
+    const TetMesh& mesh = s.mandibleOffsetMm.isZero() ? given : closed;
     const std::string dir = outJawDir + "/simulation/";
     std::vector<std::string> written;
     if (o.formats.count("inp")) {
-        if (s.contact) {
-            s.notes.push_back("no CalculiX deck: the " + s.name + " scenario needs contact (use feb or polyfem)");
-        } else {
-            CalculixOptions c;
-            c.order = o.order;
-            writeCalculixDeck(mesh, s, o.materials, dir + s.name + ".inp", c);
-            written.push_back(dir + s.name + ".inp");
-        }
+        CalculixOptions c;
+        c.order = o.order;
+        writeCalculixDeck(mesh, s, o.materials, dir + s.name + ".inp", c);
+        written.push_back(dir + s.name + ".inp");
     }
     if (o.formats.count("feb")) {
         FebioOptions f;

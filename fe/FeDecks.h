@@ -31,8 +31,8 @@ std::map<int, ToothAxes> axesForMesh(const TetMesh& mesh, const std::map<int, To
 
 /// Writes `scenario` in every format of options.formats into <outJawDir>/simulation/:
 /// <name>.inp, <name>.feb, <name>_polyfem.json (+ _polyfem.msh, _polyfem_bodies.txt,
-/// _polyfem_surfaces.txt). The .inp is skipped with a note in scenario.notes when the scenario needs
-/// contact. Returns the paths written. Throws Error for an unknown format or I/O failure.
+/// _polyfem_surfaces.txt), on `mesh` with the mandible moved by scenario.mandibleOffsetMm (biting).
+/// Returns the paths written. Throws Error for an unknown format or I/O failure.
 std::vector<std::string> writeScenarioDecks(const TetMesh& mesh, FeScenario& scenario, const std::string& outJawDir,
                                             const FeDeckOptions& options = {});
 

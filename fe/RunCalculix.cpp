@@ -3,12 +3,14 @@
 #include "fe/CalculixResults.h"
 #include "fe/CalculixWriter.h"
 #include "io/Error.h"
+#include "io/Labels.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sys/wait.h>
 
 namespace fs = std::filesystem;
@@ -91,7 +93,8 @@ CalculixRun runCalculix(const std::string& inpPath, int threads) {
     return run;
 }
 
-nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& run, const std::string& inpPath) {
+nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& run, const std::string& inpPath,
+                               const TetMesh* mesh) {
     nlohmann::json j = {{"solver", "calculix"}, {"scenario", scenario.name}, {"status", run.status},
                         {"seconds", run.seconds}, {"message", run.message}};
     if (run.status != "completed") return j;
@@ -100,6 +103,17 @@ nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& ru
     const CalculixDat dat = readCalculixDat(base + ".dat");
     const auto frd = readCalculixFrdDisplacements(base + ".frd");
 
+    // Largest displacement over each tooth's corner nodes (node numbers = index + 1 in the deck).
+    std::map<int, double> toothMax;
+    if (mesh)
+        for (std::size_t t = 0; t < mesh->tets.size(); ++t) {
+            if (labelKind(mesh->labels[t]) != LabelKind::Tooth) continue;
+            double& m = toothMax[labelUnn(mesh->labels[t])];
+            for (std::int32_t v : mesh->tets[t]) {
+                const auto u = frd.find(v + 1);
+                if (u != frd.end()) m = std::max(m, u->second.norm());
+            }
+        }
     nlohmann::json teeth = nlohmann::json::array();
     const auto printed = dat.displacements.find(upper(kCalculixLoadPointsSet));
     for (const SurfaceLoad& l : scenario.loads) {
@@ -107,25 +121,38 @@ nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& ru
         if (printed == dat.displacements.end() || !printed->second.count(l.referenceNode + 1))
             throw Error(base + ".dat", "no displacement printed for the load point of tooth " + std::to_string(l.unn));
         const Vec3 u = printed->second.at(l.referenceNode + 1);
-        teeth.push_back({{"unn", l.unn},
-                         {"load_node", l.referenceNode + 1},
-                         {"displacement_mm", {u.x(), u.y(), u.z()}},
-                         {"magnitude_mm", u.norm()},
-                         {"along_force_mm", u.dot(l.totalForceN.normalized())}});
+        nlohmann::json tooth = {{"unn", l.unn},
+                                {"load_node", l.referenceNode + 1},
+                                {"displacement_mm", {u.x(), u.y(), u.z()}},
+                                {"magnitude_mm", u.norm()},
+                                {"along_force_mm", u.dot(l.totalForceN.normalized())}};
+        if (toothMax.count(l.unn)) tooth["tooth_max_displacement_mm"] = toothMax.at(l.unn);
+        teeth.push_back(tooth);
     }
     j["teeth"] = teeth;
+    auto stats = [](const std::vector<double>& v) {
+        return nlohmann::json{{"elements", v.size()},
+                              {"max_von_mises_mpa", v.empty() ? 0.0 : *std::max_element(v.begin(), v.end())},
+                              {"median_von_mises_mpa", percentile(v, 0.5)},
+                              {"p9999_von_mises_mpa", percentile(v, 0.9999)}};
+    };
     nlohmann::json regions = nlohmann::json::object();
+    std::vector<double> pdl;
     for (const auto& [set, values] : dat.elementVonMisesMpa) {
         std::vector<double> v;
         for (const auto& [element, s] : values) v.push_back(s);
         std::string name = set;
         std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-        regions[name] = {{"elements", v.size()},
-                         {"max_von_mises_mpa", v.empty() ? 0.0 : *std::max_element(v.begin(), v.end())},
-                         {"median_von_mises_mpa", percentile(v, 0.5)},
-                         {"p9999_von_mises_mpa", percentile(v, 0.9999)}};
+        regions[name] = stats(v);
+        if (name.rfind("pdl_", 0) == 0) pdl.insert(pdl.end(), v.begin(), v.end());
     }
     j["regions"] = regions;
+    if (!pdl.empty()) {
+        // A stress spike shows as a high percentile far above the median (issue #7: under 20x).
+        j["pdl"] = stats(pdl);
+        const double median = percentile(pdl, 0.5);
+        j["pdl"]["p9999_over_median"] = median > 0 ? percentile(pdl, 0.9999) / median : 0.0;
+    }
     double maxU = 0;
     for (const auto& [node, u] : frd) maxU = std::max(maxU, u.norm());
     j["max_displacement_mm"] = maxU;

@@ -31,12 +31,16 @@ CalculixRun runCalculix(const std::string& inpPath, int threads = 1);
 /// Summary of a run, read from ccx's .dat and .frd next to `inpPath`:
 /// {"solver": "calculix", "status", "seconds", "message",
 ///  "teeth": [{"unn", "load_node", "displacement_mm": [x, y, z], "magnitude_mm",
-///             "along_force_mm" (displacement . unit force; > 0 = moved lingually)}],
+///             "along_force_mm" (displacement . unit force; > 0 = moved lingually),
+///             "tooth_max_displacement_mm" (largest over the tooth's nodes; only when `mesh` is given)}],
 ///  "regions": {"tooth_24": {"elements", "max_von_mises_mpa", "median_von_mises_mpa",
 ///              "p9999_von_mises_mpa"}, ...},
+///  "pdl": the same figures over the elements of every PDL together, plus "p9999_over_median",
 ///  "max_displacement_mm": largest nodal displacement of the .frd}.
+/// Element von Mises stress is the largest over the element's integration points.
 /// Without a completed run only solver, status, seconds and message are filled.
 /// Throws Error when a completed run's output files are missing or malformed.
-nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& run, const std::string& inpPath);
+nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& run, const std::string& inpPath,
+                               const TetMesh* mesh = nullptr);
 
 }  // namespace jawmesh

@@ -1,5 +1,6 @@
 #include "fe/Scenario.h"
 
+#include "fe/CloseBite.h"
 #include "fe/ExteriorFaces.h"
 #include "io/Error.h"
 
@@ -174,6 +175,13 @@ FeScenario bitingScenario(const TetMesh& mesh, const BitingOptions& o) {
     dir[vertical] = up[vertical] > 0 ? 1.0 : -1.0;  // along the free dof only
     push.totalForceN = o.forceN * dir;
     if (push.faces.empty() || push.areaMm2 <= 0) throw Error("biting scenario: the mandible base has no exterior faces");
+    const double gap = biteGapMm(mesh, exterior, dir);
+    if (std::isinf(gap))
+        s.notes.push_back("the crowns of the two jaws do not face each other along the bite: the jaws are left apart");
+    else if (gap > 0) {
+        s.mandibleOffsetMm = gap * dir;
+        s.notes.push_back("mandible moved " + fmt(gap) + " mm along the bite so that the crowns touch");
+    }
     s.fixed.push_back(std::move(base));
     s.loads.push_back(std::move(push));
     return s;

@@ -38,6 +38,9 @@ struct FeScenario {
     std::vector<FixedSet> fixed;
     std::vector<SurfaceLoad> loads;
     bool contact = false;                   ///< tooth-tooth contact left to the solver
+    /// Biting: the decks are written with the mandible moved by this (its crowns then touch the
+    /// maxilla's, fe/CloseBite.h); zero for other scenarios.
+    Vec3 mandibleOffsetMm = Vec3::Zero();
     std::vector<std::string> notes;         ///< what a person should know (teeth skipped, ...)
 };
 
@@ -69,7 +72,9 @@ struct BitingOptions {
 /// Biting, both jaws in one mesh: maxilla fixed at its top; the mandible base held in the two
 /// horizontal coordinate directions (the vertical one is the coordinate axis nearest the
 /// mandible-to-maxilla direction) and pushed up by forceN as a uniform traction; contact between
-/// the teeth of the two jaws is left to the solver (contact = true).
+/// the teeth of the two jaws is left to the solver (contact = true). The jaws start in contact:
+/// mandibleOffsetMm moves the mandible up by the gap between the crowns (biteGapMm; noted), since
+/// a static solve cannot begin with the mandible free and touching nothing.
 /// Throws Error unless the mesh holds both bones.
 FeScenario bitingScenario(const TetMesh& mesh, const BitingOptions& options = {});
 

@@ -1,5 +1,6 @@
 #include "fe/ToothAxesFromShape.h"
 
+#include "filters/RayTriangle.h"
 #include "io/Error.h"
 
 #include <Eigen/Eigenvalues>
@@ -89,6 +90,53 @@ Shape shapeOf(int unn, const SurfaceMesh& mesh) {
     return s;
 }
 
+/// Mean outward unit normal of the labial face of a crown: the faces facing labially within
+/// radiusMm of the outermost point where the ray from `centre` along `labial` leaves the tooth.
+/// False when the ray misses the tooth or no face there faces labially.
+bool labialFaceNormal(const SurfaceMesh& mesh, double orientation, const Vec3& centre, const Vec3& labial, double radiusMm,
+                      Vec3& normal) {
+    double exit = 0;
+    for (const Tri& t : mesh.triangles) {
+        const double hit = rayTriangleHit(centre, labial, mesh.vertices[static_cast<std::size_t>(t[0])],
+                                          mesh.vertices[static_cast<std::size_t>(t[1])], mesh.vertices[static_cast<std::size_t>(t[2])]);
+        if (std::isfinite(hit)) exit = std::max(exit, hit);
+    }
+    if (exit <= 0) return false;
+    const Vec3 point = centre + exit * labial;
+    Vec3 sum = Vec3::Zero();
+    for (const Tri& t : mesh.triangles) {
+        const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+        const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[1])];
+        const Vec3& c = mesh.vertices[static_cast<std::size_t>(t[2])];
+        const Vec3 areaNormal = 0.5 * orientation * (b - a).cross(c - a);  // outward, |.| = area
+        // Facing labially: a thin crown's lingual face can lie within the radius.
+        if (((a + b + c) / 3.0 - point).norm() <= radiusMm && areaNormal.dot(labial) > 0) sum += areaNormal;
+    }
+    if (sum.norm() <= 0) return false;
+    normal = sum.normalized();
+    return true;
+}
+
+/// The frame of a tooth for a long axis `occlusal`: mesial-distal along `distal` (made
+/// perpendicular), labial completing it away from the arch centre, and the crown centre (volume
+/// centroid of the occlusal crownFraction of the tooth's length).
+ToothAxes frameAndCrownCentre(const SurfaceMesh& mesh, const Shape& s, const Vec3& occlusal, const Vec3& distal,
+                              const Vec3& archCentre, double crownFraction) {
+    ToothAxes a;
+    a.occlusal = occlusal;
+    a.mesialDistal = (distal - distal.dot(occlusal) * occlusal).normalized();
+    a.labial = a.occlusal.cross(a.mesialDistal).normalized();
+    if (a.labial.dot(s.centroid - archCentre) < 0) a.labial = -a.labial;
+    double top = -std::numeric_limits<double>::infinity(), bottom = -top;
+    for (const Vec3& v : mesh.vertices) {
+        const double h = (v - s.centroid).dot(a.occlusal);
+        top = std::max(top, h), bottom = std::min(bottom, h);
+    }
+    const Vec3 cut = s.centroid + (top - crownFraction * (top - bottom)) * a.occlusal;
+    a.crownCentre = clippedCentroid(mesh, cut, a.occlusal, s.orientation);
+    return a;
+}
+
 }  // namespace
 
 double angleDeg(const Vec3& a, const Vec3& b) {
@@ -143,34 +191,39 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
     for (auto it = shapes.begin(); it != shapes.end(); ++it) {
         const int unn = it->first;
         const Shape& s = it->second;
-        ToothAxes a;
-        a.occlusal = sense * s.longAxis;
+        const SurfaceMesh& mesh = teeth.at(unn);
         // Arch tangent from the neighbours in UNN order (UNN runs along the arch in both jaws).
         const Vec3 prev = it == shapes.begin() ? s.centroid : std::prev(it)->second.centroid;
         const Vec3 next = std::next(it) == shapes.end() ? s.centroid : std::next(it)->second.centroid;
-        Vec3 tangent = next - prev;
-        tangent -= tangent.dot(a.occlusal) * a.occlusal;
-        if (tangent.norm() < 1e-9) {
+        Vec3 along = next - prev;
+        if (along.norm() < 1e-9) {
             // A lone tooth: the cross-section's wider principal direction stands in for the arch.
             Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-            for (const Vec3& v : teeth.at(unn).vertices) cov += (v - s.centroid) * (v - s.centroid).transpose();
+            for (const Vec3& v : mesh.vertices) cov += (v - s.centroid) * (v - s.centroid).transpose();
             Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-            tangent = eig.eigenvectors().col(1);
-            tangent -= tangent.dot(a.occlusal) * a.occlusal;
+            along = eig.eigenvectors().col(1);
             if (notes) notes->push_back("tooth " + std::to_string(unn) + ": no neighbours, mesial-distal and labial senses guessed");
         }
-        tangent.normalize();
-        a.mesialDistal = unn < midline ? Vec3(-tangent) : tangent;  // distal = away from the midline
-        a.labial = a.occlusal.cross(a.mesialDistal).normalized();
-        if (a.labial.dot(s.centroid - archCentre) < 0) a.labial = -a.labial;
-        // Crown: the occlusal part of the tooth; its volume centroid is the crown centre.
-        double top = -std::numeric_limits<double>::infinity(), bottom = -top;
-        for (const Vec3& v : teeth.at(unn).vertices) {
-            const double h = (v - s.centroid).dot(a.occlusal);
-            top = std::max(top, h), bottom = std::min(bottom, h);
+        const Vec3 distal = unn < midline ? Vec3(-along) : along;  // away from the midline
+        auto frameFor = [&](const Vec3& occlusal) {
+            return frameAndCrownCentre(mesh, s, occlusal, distal, archCentre, o.crownFraction);
+        };
+        const Vec3 anatomical = sense * s.longAxis;
+        ToothAxes a = frameFor(anatomical);
+        // Clinical crown axis: the anatomical axis in the plane of the labial face. The labial face
+        // is found from the crown centre, which moves with the axis: two passes settle it.
+        for (int pass = 0; pass < 2 && o.labialFaceRadiusMm > 0; ++pass) {
+            Vec3 normal;
+            // A face tilted more than 30 degrees from the anatomical axis is not a side of the
+            // tooth (an incisal edge or an occlusal table the ray happened to leave through).
+            if (!labialFaceNormal(mesh, s.orientation, a.crownCentre, a.labial, o.labialFaceRadiusMm, normal) ||
+                std::abs(normal.dot(anatomical)) > 0.5) {
+                if (notes) notes->push_back("tooth " + std::to_string(unn) + ": no labial crown face found, long axis = anatomical axis");
+                a = frameFor(anatomical);
+                break;
+            }
+            a = frameFor((anatomical - anatomical.dot(normal) * normal).normalized());
         }
-        const Vec3 cut = s.centroid + (top - o.crownFraction * (top - bottom)) * a.occlusal;
-        a.crownCentre = clippedCentroid(teeth.at(unn), cut, a.occlusal, s.orientation);
         axes[unn] = a;
     }
     if (notes && fromBone) notes->push_back("tooth axes: occlusal side from the bone around the roots");

@@ -1,5 +1,6 @@
 #include "filters/ShellSeeds.h"
 
+#include "filters/RayTriangle.h"
 #include "io/Error.h"
 
 #include <tbb/parallel_for.h>
@@ -13,23 +14,6 @@ namespace jawmesh {
 namespace {
 
 constexpr int kCandidatesPerShell = 6;
-
-/// Möller-Trumbore: ray parameter of the hit with triangle a, b, c, or +inf.
-double rayHit(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 e1 = b - a, e2 = c - a;
-    const Vec3 p = d.cross(e2);
-    const double det = e1.dot(p);
-    if (std::abs(det) < 1e-300) return std::numeric_limits<double>::infinity();
-    const double inv = 1.0 / det;
-    const Vec3 s = o - a;
-    const double u = s.dot(p) * inv;
-    if (u < 0 || u > 1) return std::numeric_limits<double>::infinity();
-    const Vec3 q = s.cross(e1);
-    const double v = d.dot(q) * inv;
-    if (v < 0 || u + v > 1) return std::numeric_limits<double>::infinity();
-    const double t = e2.dot(q) * inv;
-    return t > 0 ? t : std::numeric_limits<double>::infinity();
-}
 
 int findRoot(std::vector<int>& parent, int x) {
     while (parent[std::size_t(x)] != x) x = parent[std::size_t(x)] = parent[std::size_t(parent[std::size_t(x)])];
@@ -98,7 +82,7 @@ std::vector<RegionSeed> seedsInsideShells(const InterfaceComplex& complex) {
         for (std::size_t t = 0; t < T.size(); ++t) {
             if (std::int32_t(t) == c.triangle) continue;
             const Tri& f = T[t];
-            best = std::min(best, rayHit(c.origin, c.inward, V[f[0]], V[f[1]], V[f[2]]));
+            best = std::min(best, rayTriangleHit(c.origin, c.inward, V[f[0]], V[f[1]], V[f[2]]));
         }
         c.freeLength = std::isfinite(best) ? best : 0.0;
     });

@@ -18,6 +18,11 @@ TetMesh gridJawBlock();
 /// distal away from x = 5.
 std::map<int, ToothAxes> gridJawBlockAxes();
 
+/// The smallest biting case (0.5 mm cubes): mandible bone z in [0, 5] with tooth 24's crown
+/// x in [1, 3], y in [0.5, 1.5], z in [5, 6]; 0.5 mm above it tooth 9's crown (z in [6.5, 8]) under
+/// the maxilla bone z in [8, 14]. One mesh, the crowns sharing no node.
+TetMesh twoCrownBite();
+
 /// Drops tets labeled 0 and nodes no tet uses (indices compacted in order).
 TetMesh withoutOutside(const TetMesh& mesh);
 

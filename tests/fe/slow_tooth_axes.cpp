@@ -1,5 +1,6 @@
 // Computed tooth axes against the clinician-provided ones of real teeth (Open-Full-Jaw patient 26,
-// ../shared/data/p26-maxilla-teeth): long axis within 10 degrees, labial axis within 20 degrees.
+// ../shared/data/p26-maxilla-teeth): long axis within 10 degrees, labial axis within 20 degrees;
+// and their plausibility on real teeth without provided axes (../shared/data/openmandible).
 #include "fe/ToothAxesFromShape.h"
 #include "io/Case.h"
 #include "support/TestData.h"
@@ -16,11 +17,10 @@
 namespace jawmesh {
 namespace {
 
-/// Measured on patient 26 (volume principal axes): the long axis is within 10 degrees on 10 of the
-/// 15 teeth (median 8.9); the canines (6, 11), tooth 2 and the central incisors (8, 9) reach 10.3-15.8, all
-/// tilted lingually against the provided axis (a definition difference: the provided long axis is
-/// more upright than the volume's). Labial and mesial-distal axes are within 20 degrees everywhere.
-/// The assertions hold that measured level, so a regression fails and an improvement shows.
+/// The bounds, on every tooth: long axis within 10 degrees, labial axis within 20. Measured
+/// (clinical crown axis, see fe/ToothAxesFromShape.h): long median 5.1, worst 7.0 (tooth 14);
+/// labial worst 17.7 (tooth 10, a lateral incisor rotated against the arch). The volume's
+/// principal axis alone was 15.8 off on canine 11.
 void expectAxesAgree(const JawSurfaces& jaw, const std::map<int, ToothAxes>& computed) {
     ASSERT_EQ(computed.size(), jaw.teeth.size());
     std::vector<double> longs;
@@ -35,7 +35,7 @@ void expectAxesAgree(const JawSurfaces& jaw, const std::map<int, ToothAxes>& com
         const double centreMm = (c.crownCentre - given.crownCentre).norm();
         std::cout << "tooth " << unn << ": long " << longDeg << " deg, labial " << labialDeg << " deg, distal "
                   << distalDeg << " deg, crown centre " << centreMm << " mm apart\n";
-        EXPECT_LT(longDeg, 16.0);
+        EXPECT_LT(longDeg, 10.0);
         EXPECT_LT(labialDeg, 20.0);
         EXPECT_LT(distalDeg, 20.0);
         EXPECT_LT(centreMm, 2.0);
@@ -43,11 +43,8 @@ void expectAxesAgree(const JawSurfaces& jaw, const std::map<int, ToothAxes>& com
         worstLabial = std::max(worstLabial, labialDeg);
     }
     std::sort(longs.begin(), longs.end());
-    const auto within10 = std::count_if(longs.begin(), longs.end(), [](double d) { return d < 10.0; });
-    std::cout << "long axis: median " << longs[longs.size() / 2] << " deg, worst " << longs.back() << " deg, "
-              << within10 << "/" << longs.size() << " within 10 deg; labial worst " << worstLabial << " deg\n";
-    EXPECT_LT(longs[longs.size() / 2], 9.5);
-    EXPECT_GE(within10, 10);
+    std::cout << "long axis: median " << longs[longs.size() / 2] << " deg, worst " << longs.back()
+              << " deg; labial worst " << worstLabial << " deg\n";
 }
 
 TEST(ToothAxesFromShape, AgreesWithTheProvidedAxesOfRealMaxillaryTeeth) {
@@ -58,8 +55,55 @@ TEST(ToothAxesFromShape, AgreesWithTheProvidedAxesOfRealMaxillaryTeeth) {
     const JawSurfaces jaw = loadJaw(info.jaws[0]);
     ASSERT_EQ(jaw.axes.size(), 15u);
     // With the bone deciding the occlusal side, and from the tooth shapes alone.
-    expectAxesAgree(jaw, toothAxesFromShape(jaw.teeth, jaw.jaw, jaw.bone));
+    std::vector<std::string> notes;
+    expectAxesAgree(jaw, toothAxesFromShape(jaw.teeth, jaw.jaw, jaw.bone, {}, &notes));
+    for (const std::string& n : notes) EXPECT_EQ(n.find("no labial crown face"), std::string::npos) << n;
     expectAxesAgree(jaw, toothAxesFromShape(jaw.teeth, jaw.jaw, SurfaceMesh()));
+}
+
+/// Teeth without provided axes (the OpenMandible mandible, another person): the computed axes must
+/// be anatomically plausible. Long axes point to the occlusal side (+z: crowns above the roots in
+/// this scan) and within 25 degrees of each neighbour's; the labial axis points out of the arch
+/// (away from the tongue side, where the arch's centroid lies) and the crown centre lies on the
+/// crown side of the tooth's volume centroid.
+TEST(ToothAxesFromShape, PlausibleOnTheRealMandibleWithoutProvidedAxes) {
+    const std::string caseDir = test::sharedData("openmandible");
+    JAWMESH_REQUIRE_SHARED(caseDir);
+    const CaseInfo info = discoverCase(caseDir);
+    ASSERT_EQ(info.jaws.size(), 1u);
+    const JawSurfaces jaw = loadJaw(info.jaws[0]);
+    ASSERT_TRUE(jaw.axes.empty());
+    std::vector<std::string> notes;
+    const auto axes = toothAxesFromShape(jaw.teeth, jaw.jaw, jaw.bone, {}, &notes);
+    ASSERT_EQ(axes.size(), 14u);
+    for (const std::string& n : notes) EXPECT_EQ(n.find("no labial crown face"), std::string::npos) << n;
+    Vec3 archCentre = Vec3::Zero();
+    for (const auto& [unn, a] : axes) archCentre += a.crownCentre / static_cast<double>(axes.size());
+    for (auto it = axes.begin(); it != axes.end(); ++it) {
+        const auto& [unn, a] = *it;
+        SCOPED_TRACE("tooth " + std::to_string(unn));
+        EXPECT_GT(a.occlusal.z(), 0.7);
+        if (std::next(it) != axes.end()) {
+            const double toNext = angleDeg(a.occlusal, std::next(it)->second.occlusal);
+            std::cout << "tooth " << unn << ": long axis " << a.occlusal.transpose() << ", " << toNext << " deg to the next\n";
+            EXPECT_LT(toNext, 25.0);
+        }
+        Vec3 outward = a.crownCentre - archCentre;
+        outward -= outward.dot(a.occlusal) * a.occlusal;
+        EXPECT_GT(a.labial.dot(outward.normalized()), 0.3);
+        EXPECT_NEAR(a.labial.dot(a.occlusal), 0.0, 1e-9);
+        EXPECT_NEAR(a.mesialDistal.dot(a.occlusal), 0.0, 1e-9);
+        double volume = 0;
+        Vec3 moment = Vec3::Zero();
+        for (const Tri& t : jaw.teeth.at(unn).triangles) {
+            const Vec3& p = jaw.teeth.at(unn).vertices[static_cast<std::size_t>(t[0])];
+            const Vec3& q = jaw.teeth.at(unn).vertices[static_cast<std::size_t>(t[1])];
+            const Vec3& r = jaw.teeth.at(unn).vertices[static_cast<std::size_t>(t[2])];
+            const double v = p.dot(q.cross(r)) / 6.0;
+            volume += v, moment += v * (p + q + r) / 4.0;
+        }
+        EXPECT_GT((a.crownCentre - moment / volume).dot(a.occlusal), 1.0);
+    }
 }
 
 TEST(AxesCommand, PrintsTheCaseAxesInTheirJsonShape) {

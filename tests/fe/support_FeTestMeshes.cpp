@@ -37,6 +37,15 @@ TetMesh gridJawBlock() {
     return withoutOutside(gridTetMesh(20, 10, 14, 0.5, label));
 }
 
+TetMesh twoCrownBite() {
+    return withoutOutside(gridTetMesh(8, 4, 28, 0.5, [](const Vec3& p) -> Label {
+        const bool column = p.x() > 1 && p.x() < 3 && p.y() > 0.5 && p.y() < 1.5;
+        if (column && p.z() > 5 && p.z() < 6.1) return toothLabel(24);
+        if (column && p.z() > 6.6 && p.z() < 8) return toothLabel(9);
+        return p.z() < 5 ? kMandibleBoneLabel : p.z() > 8 ? kMaxillaBoneLabel : kOutsideLabel;
+    }));
+}
+
 std::map<int, ToothAxes> gridJawBlockAxes() {
     std::map<int, ToothAxes> axes;
     for (const auto& [unn, x] : {std::pair<int, double>{24, 3.0}, {25, 7.0}}) {

@@ -2,6 +2,8 @@
 // Every value checked is read back from ccx's own .dat and .frd files.
 #include "fe/CalculixResults.h"
 #include "fe/CalculixWriter.h"
+#include "fe/CloseBite.h"
+#include "fe/ExteriorFaces.h"
 #include "fe/FeTestMeshes.h"
 #include "fe/QuadraticTets.h"
 #include "fe/RunCalculix.h"
@@ -11,8 +13,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <iostream>
+#include <set>
 #include <sstream>
 
 namespace jawmesh {
@@ -41,7 +47,7 @@ Solved solveTipping(int order, const std::string& dirName) {
     writeCalculixDeck(mesh, s, MaterialTable(), inp, o);
     const CalculixRun run = runCalculix(inp);
     Solved r;
-    r.summary = calculixSummary(s, run, inp);
+    r.summary = calculixSummary(s, run, inp, &mesh);
     if (run.status == "completed") {
         r.frd = readCalculixFrdDisplacements((dir / "tipping.frd").string());
         r.dat = readCalculixDat((dir / "tipping.dat").string());
@@ -68,7 +74,15 @@ void expectTippingResult(const Solved& r, std::size_t expectedNodes) {
         EXPECT_GT(t["displacement_mm"][1].get<double>(), 1e-5);
         const Vec3 fromFrd = r.frd.at(t["load_node"].get<std::int32_t>());
         EXPECT_NEAR(fromFrd.y(), t["displacement_mm"][1].get<double>(), 1e-5 * std::max(1.0, std::abs(fromFrd.y())) + 1e-9);
+        // The load point is a node of the tooth: the tooth's largest displacement is at least its.
+        EXPECT_GE(t["tooth_max_displacement_mm"].get<double>(), t["magnitude_mm"].get<double>() * (1 - 1e-6));
     }
+    // All PDL elements together: both PDLs' elements, median below the 99.99th percentile.
+    const auto& pdl = r.summary["pdl"];
+    EXPECT_EQ(pdl["elements"].get<std::size_t>(),
+              r.summary["regions"]["pdl_24"]["elements"].get<std::size_t>() + r.summary["regions"]["pdl_25"]["elements"].get<std::size_t>());
+    EXPECT_GT(pdl["median_von_mises_mpa"].get<double>(), 0.0);
+    EXPECT_GE(pdl["p9999_over_median"].get<double>(), 1.0);
     // Fixed base nodes stay put.
     EXPECT_EQ(r.frd.at(1).norm(), 0.0);  // node 1 is the grid origin, on the base
     // Stresses read back for every region, positive and finite.
@@ -126,6 +140,82 @@ TEST(Calculix, SolvesQuadraticTetTippingWithSharedMidEdgeNodes) {
         EXPECT_LT(ratio, 3.0);
     }
     std::cout << "C3D10: " << r.summary["seconds"] << " s, tooth 24 moved " << r.summary["teeth"][0]["magnitude_mm"] << " mm\n";
+}
+
+TEST(Calculix, BitingDeckHasCrownSurfacesOnExteriorFacesAndAContactPair) {
+    const TetMesh mesh = test::twoCrownBite();
+    const FeScenario s = bitingScenario(mesh);
+    const auto dir = test::scratchDir("fe-ccx-biting-deck");
+    writeCalculixDeck(mesh, s, MaterialTable(), (dir / "biting.inp").string());
+    const std::string deck = readText((dir / "biting.inp").string());
+    for (const char* needle : {"*SURFACE, NAME=crowns_mandible, TYPE=ELEMENT", "*SURFACE, NAME=crowns_maxilla, TYPE=ELEMENT",
+                               "*SURFACE INTERACTION, NAME=occlusal_contact", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
+                               "*CONTACT PAIR, INTERACTION=occlusal_contact, TYPE=SURFACE TO SURFACE\ncrowns_mandible, crowns_maxilla",
+                               "fixed_top_maxilla, 3, 3", "base_mandible, 1, 1", "base_mandible, 2, 2", "*CLOAD"})
+        EXPECT_NE(deck.find(needle), std::string::npos) << needle;
+    EXPECT_EQ(deck.find("base_mandible, 3, 3"), std::string::npos);  // free vertically
+    // Every surface line names a face (by Abaqus's S1..S4 numbering of the element's own nodes)
+    // that is an exterior face of a tooth of that jaw.
+    std::set<std::array<std::int32_t, 3>> exteriorTooth;
+    for (const ExteriorFace& f : exteriorFaces(mesh)) {
+        if (labelKind(f.label) != LabelKind::Tooth) continue;
+        std::array<std::int32_t, 3> key = f.nodes;
+        std::sort(key.begin(), key.end());
+        exteriorTooth.insert(key);
+    }
+    const std::array<std::array<int, 3>, 4> abaqusFaces = {{{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}}};
+    std::istringstream in(deck);
+    std::string line, surface;
+    std::map<std::string, std::size_t> faceCount;
+    while (std::getline(in, line)) {
+        if (line.rfind("*SURFACE, NAME=", 0) == 0) {
+            surface = line.substr(15, line.find(',', 15) - 15);
+            continue;
+        }
+        if (line.empty() || line[0] == '*') surface.clear();
+        if (surface.empty() || line.empty() || line[0] == '*') continue;
+        const std::int32_t element = std::stoi(line.substr(0, line.find(',')));
+        const int face = std::stoi(line.substr(line.find('S') + 1));
+        ASSERT_GE(face, 1);
+        ASSERT_LE(face, 4);
+        const Tet& tet = mesh.tets[static_cast<std::size_t>(element - 1)];
+        std::array<std::int32_t, 3> key;
+        for (std::size_t i = 0; i < 3; ++i) key[i] = tet[static_cast<std::size_t>(abaqusFaces[static_cast<std::size_t>(face - 1)][i])];
+        std::sort(key.begin(), key.end());
+        EXPECT_TRUE(exteriorTooth.count(key)) << line;
+        const Label label = mesh.labels[static_cast<std::size_t>(element - 1)];
+        EXPECT_EQ("crowns_" + jawName(jawOfTooth(labelUnn(label))), surface);
+        ++faceCount[surface];
+    }
+    EXPECT_EQ(faceCount["crowns_mandible"] + faceCount["crowns_maxilla"], exteriorTooth.size());
+}
+
+// The biting deck runs in CalculiX: it reads the contact definitions, and with the crowns brought
+// into contact (the mandible moved up by their 0.5 mm gap) the 200 N pass through them.
+TEST(Calculix, SolvesTheBitingDeckWithContactOnTwoCrowns) {
+    ASSERT_FALSE(findCalculix().empty()) << "ccx missing: install the Debian package calculix-ccx (quickstart.sh does)";
+    const FeScenario s = bitingScenario(test::twoCrownBite());
+    ASSERT_NEAR((s.mandibleOffsetMm - Vec3(0, 0, 0.5)).norm(), 0.0, 1e-9);
+    const TetMesh mesh = withMandibleMoved(test::twoCrownBite(), s.mandibleOffsetMm);
+    const auto dir = test::scratchDir("fe-ccx-biting");
+    const std::string inp = (dir / "biting.inp").string();
+    writeCalculixDeck(mesh, s, MaterialTable(), inp);
+    const CalculixRun run = runCalculix(inp);
+    const nlohmann::json summary = calculixSummary(s, run, inp);
+    std::cout << summary.dump(2) << "\n";
+    EXPECT_EQ(readText(run.logPath).find("*ERROR"), std::string::npos) << readText(run.logPath);
+    ASSERT_EQ(run.status, "completed") << run.message;
+    const auto frd = readCalculixFrdDisplacements((dir / "biting.frd").string());
+    // The crowns touch from the start: the lower crown's top rises only by what the maxilla and the
+    // contact penalty yield (well under the 0.5 mm gap closed beforehand), and it does rise.
+    double lowerTopRise = 0;
+    for (std::size_t v = 0; v < mesh.nodes.size(); ++v)
+        if (std::abs(mesh.nodes[v].z() - 6.5) < 1e-9 && mesh.nodes[v].x() > 1 && mesh.nodes[v].x() < 3 &&
+            frd.count(static_cast<std::int32_t>(v + 1)))
+            lowerTopRise = std::max(lowerTopRise, frd.at(static_cast<std::int32_t>(v + 1)).z());
+    EXPECT_GT(lowerTopRise, 0.0);
+    EXPECT_LT(lowerTopRise, 0.25);
+    EXPECT_GT(summary["regions"]["bone_maxilla"]["max_von_mises_mpa"].get<double>(), 0.0);
 }
 
 TEST(Calculix, ReadersRejectMissingAndMalformedOutput) {
