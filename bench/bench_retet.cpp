@@ -1,0 +1,81 @@
+// Re-tetrahedralizes a written mesh's interface surface with other TetGen options: the interface
+// complex (every face between two labels or on the outside, seeds inside every shell) is read back
+// from a run's volumetric .msh, so sizing and quality options can be compared on real output
+// (e.g. the shared mandible) without repeating extraction and simplification.
+// Usage: bench_retet <mesh.msh> [key=value ...], keys: q (radius-edge), dihedral, bone, tooth, pdl,
+// max (edge mm), O (optimisation level), repair (attempts), improve (0/1).
+#include "filters/ShellSeeds.h"
+#include "io/GmshReader.h"
+#include "tet/TetFaceAdjacency.h"
+#include "tet/Tetrahedralize.h"
+#include "tet/ValidateTetMesh.h"
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <string>
+
+namespace {
+
+jawmesh::InterfaceComplex interfaceComplexOf(const jawmesh::TetMesh& mesh) {
+    const jawmesh::TetFaceAdjacency adj = jawmesh::tetFaceAdjacency(mesh);
+    jawmesh::InterfaceComplex c;
+    c.surface.vertices = mesh.nodes;
+    for (std::size_t g = 0; g < adj.groupCount(); ++g) {
+        if (jawmesh::insideOneRegion(adj, mesh, g)) continue;
+        const jawmesh::TetFaceRef& f = adj.faces[std::size_t(adj.groupStart[g])];
+        const jawmesh::Label in = mesh.labels[std::size_t(f.tet)];
+        const jawmesh::Label other =
+            adj.groupSize(g) == 2 ? mesh.labels[std::size_t(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet)] : jawmesh::kOutsideLabel;
+        const auto tri = jawmesh::outwardFace(mesh.tets[std::size_t(f.tet)], f.local);
+        c.surface.triangles.push_back({tri[0], tri[1], tri[2]});
+        c.sides.push_back({other, in});  // outward of `in`: the normal points into `other`
+    }
+    c.seeds = jawmesh::seedsInsideShells(c);
+    return c;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: bench_retet <mesh.msh> [q=1.5 dihedral=10 bone=2 tooth=1 pdl=0.3 max=0 O=3 repair=2 improve=1]\n");
+        return 2;
+    }
+    jawmesh::TetOptions o;
+    o.boneEdgeMm = 2.0;
+    o.toothEdgeMm = 1.0;
+    o.pdlEdgeMm = 0.3;
+    for (int i = 2; i < argc; ++i) {
+        const std::string a = argv[i];
+        const auto eq = a.find('=');
+        const std::string k = a.substr(0, eq);
+        const double v = std::stod(a.substr(eq + 1));
+        if (k == "q") o.radiusEdgeRatio = v;
+        else if (k == "dihedral") o.minDihedralDeg = v;
+        else if (k == "bone") o.boneEdgeMm = v;
+        else if (k == "tooth") o.toothEdgeMm = v;
+        else if (k == "pdl") o.pdlEdgeMm = v;
+        else if (k == "max") o.maxEdgeMm = v;
+        else if (k == "O") o.optimizationLevel = int(v);
+        else if (k == "repair") o.repairAttempts = int(v);
+        else if (k == "improve") o.improveSlivers = v != 0;
+        else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
+    }
+    const jawmesh::TetMesh in = jawmesh::readGmsh(argv[1]);
+    const jawmesh::InterfaceComplex c = interfaceComplexOf(in);
+    std::printf("input: %zu nodes, %zu tets; complex %zu triangles, %zu seeds\n", in.nodes.size(), in.tets.size(),
+                c.surface.triangles.size(), c.seeds.size());
+    jawmesh::TetStats s;
+    const auto t0 = std::chrono::steady_clock::now();
+    const jawmesh::TetMesh out = jawmesh::tetrahedralize(c, o, jawmesh::noProgress(), &s);
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const jawmesh::ValidationReport r = jawmesh::validateTetMesh(out, {});
+    std::map<std::string, std::size_t> perKind;
+    for (jawmesh::Label l : out.labels) perKind[jawmesh::labelKind(l) == jawmesh::LabelKind::Bone ? "bone" : jawmesh::labelKind(l) == jawmesh::LabelKind::Tooth ? "tooth" : "pdl"]++;
+    std::printf("| %s | %zu nodes, %zu tets (bone %zu, tooth %zu, pdl %zu) | min dihedral %.2f deg, %zu below %.0f (TetGen %zu) | "
+                "%s, %d attempts | %.0f s | violations %zu |\n",
+                argv[1], out.nodes.size(), out.tets.size(), perKind["bone"], perKind["tooth"], perKind["pdl"], s.minDihedralDeg,
+                s.belowMinDihedral, o.minDihedralDeg, s.slivers.badBefore, s.switches.c_str(), s.attempts, sec, r.violationCount());
+    return 0;
+}
