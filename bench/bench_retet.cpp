@@ -2,7 +2,7 @@
 // complex (every face between two labels or on the outside, seeds inside every shell) is read back
 // from a run's volumetric .msh, so sizing and quality options can be compared on real output
 // (e.g. the shared mandible) without repeating extraction and simplification.
-// Usage: bench_retet <mesh.msh> [key=value ...], keys: q (radius-edge), dihedral, bone, tooth, pdl,
+// Usage: bench_retet <mesh.msh> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
 // max (edge mm), O (optimisation level), repair (attempts), improve (0/1).
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
         const double v = std::stod(a.substr(eq + 1));
         if (k == "q") o.radiusEdgeRatio = v;
         else if (k == "dihedral") o.minDihedralDeg = v;
+        else if (k == "tgdihedral") o.tetgenMinDihedralDeg = v;
         else if (k == "bone") o.boneEdgeMm = v;
         else if (k == "tooth") o.toothEdgeMm = v;
         else if (k == "pdl") o.pdlEdgeMm = v;

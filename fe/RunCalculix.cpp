@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sys/wait.h>
 
 namespace fs = std::filesystem;
@@ -114,6 +115,37 @@ nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& ru
                 if (u != frd.end()) m = std::max(m, u->second.norm());
             }
         }
+    // The same relative to the tooth's socket: the mean displacement of the nodes its PDL shares
+    // with the bone. That is how far the tooth moves in its bone (what the PDL allows); the
+    // absolute figure adds whatever the bone itself bends under the load.
+    std::map<int, double> toothInSocketMax;
+    std::map<int, Vec3> socketMean;
+    if (mesh) {
+        std::vector<char> onBone(mesh->nodes.size(), 0);
+        for (std::size_t t = 0; t < mesh->tets.size(); ++t)
+            if (labelKind(mesh->labels[t]) == LabelKind::Bone)
+                for (std::int32_t v : mesh->tets[t]) onBone[std::size_t(v)] = 1;
+        std::map<int, std::set<std::int32_t>> socketNodes;
+        for (std::size_t t = 0; t < mesh->tets.size(); ++t)
+            if (labelKind(mesh->labels[t]) == LabelKind::Pdl)
+                for (std::int32_t v : mesh->tets[t])
+                    if (onBone[std::size_t(v)] && frd.count(v + 1)) socketNodes[labelUnn(mesh->labels[t])].insert(v);
+        for (const auto& [unn, nodes] : socketNodes) {
+            Vec3 sum = Vec3::Zero();
+            for (std::int32_t v : nodes) sum += frd.at(v + 1);
+            socketMean[unn] = sum / double(nodes.size());
+        }
+        for (std::size_t t = 0; t < mesh->tets.size(); ++t) {
+            if (labelKind(mesh->labels[t]) != LabelKind::Tooth) continue;
+            const auto mean = socketMean.find(labelUnn(mesh->labels[t]));
+            if (mean == socketMean.end()) continue;
+            double& m = toothInSocketMax[mean->first];
+            for (std::int32_t v : mesh->tets[t]) {
+                const auto u = frd.find(v + 1);
+                if (u != frd.end()) m = std::max(m, (u->second - mean->second).norm());
+            }
+        }
+    }
     nlohmann::json teeth = nlohmann::json::array();
     const auto printed = dat.displacements.find(upper(kCalculixLoadPointsSet));
     for (const SurfaceLoad& l : scenario.loads) {
@@ -127,6 +159,11 @@ nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& ru
                                 {"magnitude_mm", u.norm()},
                                 {"along_force_mm", u.dot(l.totalForceN.normalized())}};
         if (toothMax.count(l.unn)) tooth["tooth_max_displacement_mm"] = toothMax.at(l.unn);
+        if (toothInSocketMax.count(l.unn)) {
+            const Vec3& m = socketMean.at(l.unn);
+            tooth["socket_mean_displacement_mm"] = {m.x(), m.y(), m.z()};
+            tooth["tooth_max_displacement_in_socket_mm"] = toothInSocketMax.at(l.unn);
+        }
         teeth.push_back(tooth);
     }
     j["teeth"] = teeth;

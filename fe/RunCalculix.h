@@ -32,7 +32,10 @@ CalculixRun runCalculix(const std::string& inpPath, int threads = 1);
 /// {"solver": "calculix", "status", "seconds", "message",
 ///  "teeth": [{"unn", "load_node", "displacement_mm": [x, y, z], "magnitude_mm",
 ///             "along_force_mm" (displacement . unit force; > 0 = moved lingually),
-///             "tooth_max_displacement_mm" (largest over the tooth's nodes; only when `mesh` is given)}],
+///             "tooth_max_displacement_mm" (largest over the tooth's nodes; only when `mesh` is given),
+///             "socket_mean_displacement_mm": [x, y, z] (mean over the nodes its PDL shares with the
+///             bone) and "tooth_max_displacement_in_socket_mm" (largest over the tooth's nodes of
+///             the displacement minus that mean: how far the tooth moves in its bone; with `mesh`)}],
 ///  "regions": {"tooth_24": {"elements", "max_von_mises_mpa", "median_von_mises_mpa",
 ///              "p9999_von_mises_mpa"}, ...},
 ///  "pdl": the same figures over the elements of every PDL together, plus "p9999_over_median",

@@ -137,7 +137,7 @@ struct Attempt {
 
 std::string switchesFor(const TetOptions& o, int level, double ratio) {
     std::string sw = "pzQA";
-    sw += "q" + fmt(ratio) + "/" + fmt(o.minDihedralDeg);
+    sw += "q" + fmt(ratio) + "/" + fmt(o.tetgenMinDihedralDeg >= 0 ? o.tetgenMinDihedralDeg : o.minDihedralDeg);
     const bool regional = o.boneEdgeMm > 0 || o.toothEdgeMm > 0 || o.pdlEdgeMm > 0;
     if (regional) sw += "a";
     if (o.maxEdgeMm > 0) sw += "a" + fmt(tetVolumeForEdge(o.maxEdgeMm));
@@ -300,6 +300,8 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
     if (!(options.radiusEdgeRatio > 1.0)) throw Error(kWhat, "the radius-edge bound must be > 1 (TetGen -q)");
     if (options.minDihedralDeg < 0 || options.minDihedralDeg >= 70)
         throw Error(kWhat, "the minimum dihedral angle must be in [0, 70) degrees");
+    if (options.tetgenMinDihedralDeg >= 70)
+        throw Error(kWhat, "TetGen's minimum dihedral angle must be below 70 degrees");
 
     if (options.checkIntersections) rejectSelfIntersections(plc, options);
 

@@ -15,6 +15,10 @@ namespace jawmesh {
 struct TetOptions {
     double radiusEdgeRatio = 1.5;   ///< TetGen -q bound on circumradius / shortest edge (> 1.0)
     double minDihedralDeg = 10.0;   ///< target minimum dihedral angle of every tet (TetGen -q/<deg>)
+    /// Dihedral bound given to TetGen's refinement (-q/<deg>) when >= 0; below 0 it is
+    /// minDihedralDeg. TetGen refines with Steiner points towards it; the sliver improvement after
+    /// TetGen always aims at minDihedralDeg.
+    double tetgenMinDihedralDeg = -1.0;
     double boneEdgeMm = 0.0;        ///< target edge length in bone (coarse)
     double toothEdgeMm = 0.0;       ///< target edge length in teeth (medium)
     double pdlEdgeMm = 0.0;         ///< target edge length in PDL (fine)

@@ -1,5 +1,5 @@
 // CalculiX on a whole meshed mandible (issue #7): the C3D4 tipping deck of `jawmesh fe` solves; the
-// incisors move more than the molars under the same 1 N; every tooth's largest displacement lies
+// incisors move more in their sockets than the molars under the same 1 N; every tooth's largest displacement lies
 // within 1e-4..1e-1 mm; no stress spike in the PDL (99.99th percentile of element von Mises under
 // 20x the median). Every figure is read from ccx's own .frd and .dat.
 // Needs a finished run (too long to make inside a test): JAWMESH_MANDIBLE_RUN=<out>/mandible after
@@ -63,12 +63,40 @@ TEST(SlowFe, MandibleTippingSolvesInCalculixWithPlausibleDisplacementsAndNoPdlSp
         EXPECT_GT(u, 1e-4) << "tooth " << unn;
         EXPECT_LT(u, 1e-1) << "tooth " << unn;
     }
+    // How far each tooth moves in its bone: its nodes' displacement less the mean displacement of
+    // its socket (the nodes its PDL shares with the bone). The mandible is held at its base only,
+    // so the bone bends under the loads and carries the teeth with it (more at the back): the
+    // comparison of tooth mobility is made relative to the socket.
+    std::vector<char> onBone(mesh.nodes.size(), 0);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        if (labelKind(mesh.labels[t]) == LabelKind::Bone)
+            for (std::int32_t v : mesh.tets[t]) onBone[std::size_t(v)] = 1;
+    std::map<int, std::set<std::int32_t>> socket;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        if (labelKind(mesh.labels[t]) == LabelKind::Pdl)
+            for (std::int32_t v : mesh.tets[t])
+                if (onBone[std::size_t(v)]) socket[labelUnn(mesh.labels[t])].insert(v);
+    std::map<int, Vec3> socketMean;
+    for (const auto& [unn, nodes] : socket) {
+        Vec3 sum = Vec3::Zero();
+        for (std::int32_t v : nodes) sum += frd.at(v + 1);
+        socketMean[unn] = sum / double(nodes.size());
+    }
+    std::map<int, double> inSocketMm;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        if (labelKind(mesh.labels[t]) != LabelKind::Tooth) continue;
+        const int unn = labelUnn(mesh.labels[t]);
+        ASSERT_TRUE(socketMean.count(unn)) << "tooth " << unn << " has no socket nodes";
+        double& m = inSocketMm[unn];
+        for (std::int32_t v : mesh.tets[t]) m = std::max(m, (frd.at(v + 1) - socketMean.at(unn)).norm());
+    }
+    for (const auto& [unn, u] : inSocketMm) std::cout << "tooth " << unn << ": largest displacement in its socket " << u << " mm\n";
     // Incisors (central and lateral: 23-26) against molars (first and second: 18, 19, 30, 31).
     double leastIncisor = 1e9, mostMolar = 0;
     for (int unn : {23, 24, 25, 26})
-        if (toothMaxMm.count(unn)) leastIncisor = std::min(leastIncisor, toothMaxMm.at(unn));
+        if (inSocketMm.count(unn)) leastIncisor = std::min(leastIncisor, inSocketMm.at(unn));
     for (int unn : {18, 19, 30, 31})
-        if (toothMaxMm.count(unn)) mostMolar = std::max(mostMolar, toothMaxMm.at(unn));
+        if (inSocketMm.count(unn)) mostMolar = std::max(mostMolar, inSocketMm.at(unn));
     ASSERT_LT(leastIncisor, 1e9) << "no incisor in the mesh";
     ASSERT_GT(mostMolar, 0.0) << "no molar in the mesh";
     std::cout << "least incisor " << leastIncisor << " mm, most molar " << mostMolar << " mm\n";
@@ -95,8 +123,10 @@ TEST(SlowFe, MandibleTippingSolvesInCalculixWithPlausibleDisplacementsAndNoPdlSp
     const auto summary = nlohmann::json::parse(in);
     EXPECT_EQ(summary["status"], "completed");
     EXPECT_NEAR(summary["pdl"]["p9999_von_mises_mpa"].get<double>(), p9999, 1e-9 * p9999);
-    for (const auto& tooth : summary["teeth"])
+    for (const auto& tooth : summary["teeth"]) {
         EXPECT_NEAR(tooth["tooth_max_displacement_mm"].get<double>(), toothMaxMm.at(tooth["unn"].get<int>()), 1e-12);
+        EXPECT_NEAR(tooth["tooth_max_displacement_in_socket_mm"].get<double>(), inSocketMm.at(tooth["unn"].get<int>()), 1e-12);
+    }
 }
 
 }  // namespace

@@ -76,6 +76,16 @@ void expectTippingResult(const Solved& r, std::size_t expectedNodes) {
         EXPECT_NEAR(fromFrd.y(), t["displacement_mm"][1].get<double>(), 1e-5 * std::max(1.0, std::abs(fromFrd.y())) + 1e-9);
         // The load point is a node of the tooth: the tooth's largest displacement is at least its.
         EXPECT_GE(t["tooth_max_displacement_mm"].get<double>(), t["magnitude_mm"].get<double>() * (1 - 1e-6));
+        // In its socket: the load point relative to the socket's mean motion is at most the
+        // tooth's largest, which is at most its absolute largest plus the socket's own motion.
+        const auto& sm = t["socket_mean_displacement_mm"];
+        const Vec3 socket(sm[0].get<double>(), sm[1].get<double>(), sm[2].get<double>());
+        const double inSocket = t["tooth_max_displacement_in_socket_mm"].get<double>();
+        EXPECT_GT(inSocket, 0.0);
+        EXPECT_GE(inSocket, (fromFrd - socket).norm() * (1 - 1e-6));
+        EXPECT_LE(inSocket, (t["tooth_max_displacement_mm"].get<double>() + socket.norm()) * (1 + 1e-6));
+        // The tooth moves more than the bone holding it (the PDL is 20-30x softer).
+        EXPECT_LT(socket.norm(), t["tooth_max_displacement_mm"].get<double>());
     }
     // All PDL elements together: both PDLs' elements, median below the 99.99th percentile.
     const auto& pdl = r.summary["pdl"];
