@@ -231,3 +231,17 @@ TEST(Tetrahedralize, LabelsComeFromTheInterfaceSidesAndBadComplexesAreRejected) 
     badSides.sides.pop_back();
     EXPECT_THROW(tetrahedralize(badSides, gradedOptions()), Error);
 }
+
+TEST(Tetrahedralize, TetgenDihedralBoundIsSeparateFromTheTarget) {
+    const InterfaceComplex plc = nestedSpheresComplex(1, 1.0);
+    TetOptions o = gradedOptions();
+    o.tetgenMinDihedralDeg = 0.0;  // TetGen refines by radius-edge only; the improver aims at 10
+    TetStats s;
+    const TetMesh m = tetrahedralize(plc, o, noProgress(), &s);
+    EXPECT_NE(s.switches.find("/0a"), std::string::npos) << s.switches;
+    EXPECT_TRUE(validateTetMesh(m, {24, 25}).valid());
+    EXPECT_EQ(s.belowMinDihedral, 0u) << "min dihedral " << s.minDihedralDeg;
+    EXPECT_GE(s.minDihedralDeg, o.minDihedralDeg);
+    o.tetgenMinDihedralDeg = 70.0;
+    EXPECT_THROW(tetrahedralize(plc, o), Error);
+}
