@@ -231,6 +231,10 @@ bool triangleDegenerate(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 bool trianglesIntersect(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const Tri& ib) {
+    // A triangle with a repeated index is degenerate (reported separately); the shared-vertex
+    // logic below needs three distinct indices on each side.
+    const auto repeats = [](const Tri& t) { return t[0] == t[1] || t[1] == t[2] || t[0] == t[2]; };
+    if (repeats(ia) || repeats(ib)) return false;
     int sharedA[3], sharedB[3], nShared = 0;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)

@@ -31,7 +31,8 @@ SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh);
 
 /// Exact test for two triangles given by corner positions and vertex indices (indices decide what
 /// is shared: equal indices are the same point). True when they intersect other than at shared
-/// vertices / along a shared edge, as for findSelfIntersections. Cost: a few dozen predicates.
+/// vertices / along a shared edge, as for findSelfIntersections; false when either triangle repeats
+/// an index (degenerate: findSelfIntersections reports those apart). Cost: a few dozen predicates.
 bool trianglesIntersect(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const Tri& ib);
 
 /// Exact sign of det[a - d; b - d; c - d] (Shewchuk's orient3d): +1 when d lies below the plane

@@ -20,20 +20,16 @@
 #include <map>
 #include <sstream>
 
-#include <unistd.h>
-
 namespace jawmesh::test {
 namespace {
 namespace fs = std::filesystem;
 
 class BadInput : public ::testing::Test {
 protected:
-    /// The clean phantom case (written once per test process): mandible, teeth 24 and 25. The
-    /// folder name holds the process id: ctest runs the cases as parallel processes, and one must
-    /// not wipe the base another is copying.
+    /// The clean phantom case (written once per test process): mandible, teeth 24 and 25.
     static const fs::path& base() {
         static const fs::path dir = [] {
-            const fs::path d = scratchDir("bad-input-base-" + std::to_string(::getpid())) / "case";
+            const fs::path d = processScratchDir("bad-input-base") / "case";
             const CliResult r = runJawmesh("-q phantom " + d.string() + " --teeth 2 --seed 1 --triangles-scale 0.3",
                                            d.parent_path() / "phantom.log");
             EXPECT_EQ(r.exitCode, 0) << r.output;

@@ -34,7 +34,7 @@ CommandResult runJawmesh(const std::string& args, const fs::path& dir) {
 
 /// The synthetic jaw as a run output (.msh) and its input case, in a fresh folder.
 fs::path writeSyntheticCase(const std::string& name) {
-    const fs::path dir = scratchDir(name);
+    const fs::path dir = processScratchDir(name);
     writeGmsh(syntheticJawMesh(), (dir / "mandible.msh").string());
     const JawSurfaces in = syntheticJawInput();
     writeSurface(in.bone, (dir / "case/input/mandible/bone/mandible.stl").string());

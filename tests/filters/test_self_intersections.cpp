@@ -75,6 +75,19 @@ TEST(SelfIntersections, CleanSphereAndDentedSphere) {
     const auto r = findSelfIntersections(t);
     EXPECT_FALSE(r.pairs.empty());
     EXPECT_EQ(r.degenerate.size(), 1u);
+    // The degenerate one meets every triangle at vertex 0 but is never a pair (it is reported as
+    // degenerate); this used to read past the corner arrays (AddressSanitizer).
+    for (const auto& [x, y] : r.pairs) {
+        EXPECT_NE(x, std::int32_t(t.triangles.size() - 1));
+        EXPECT_NE(y, std::int32_t(t.triangles.size() - 1));
+    }
+    const Vec3 d[3] = {t.vertices[0], t.vertices[0], t.vertices[1]};
+    for (std::size_t k = 0; k + 1 < t.triangles.size(); ++k) {
+        const Tri& f = t.triangles[k];
+        const Vec3 p[3] = {t.vertices[f[0]], t.vertices[f[1]], t.vertices[f[2]]};
+        EXPECT_FALSE(trianglesIntersect(d, {0, 0, 1}, p, f));
+        EXPECT_FALSE(trianglesIntersect(p, f, d, {0, 0, 1}));
+    }
 }
 
 // A dense closed surface (many near-coplanar neighbours) is clean; speed is a bench/ matter.

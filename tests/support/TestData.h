@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 namespace jawmesh::test {
 
 /// ../shared/data/<relative>; the test is skipped (not passed) when the shared data is absent.
@@ -24,6 +26,13 @@ inline std::filesystem::path scratchDir(const std::string& name) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+/// scratchDir(name) made unique to this process: for folders a fixture sets up once and shares
+/// between its tests. ctest runs every test as its own process, in parallel, so a shared name
+/// would let one process wipe the folder another is still using.
+inline std::filesystem::path processScratchDir(const std::string& name) {
+    return scratchDir(name + "-" + std::to_string(::getpid()));
 }
 
 }  // namespace jawmesh::test
