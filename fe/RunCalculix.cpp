@@ -104,21 +104,11 @@ nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& ru
     const CalculixDat dat = readCalculixDat(base + ".dat");
     const auto frd = readCalculixFrdDisplacements(base + ".frd");
 
-    // Largest displacement over each tooth's corner nodes (node numbers = index + 1 in the deck).
-    std::map<int, double> toothMax;
-    if (mesh)
-        for (std::size_t t = 0; t < mesh->tets.size(); ++t) {
-            if (labelKind(mesh->labels[t]) != LabelKind::Tooth) continue;
-            double& m = toothMax[labelUnn(mesh->labels[t])];
-            for (std::int32_t v : mesh->tets[t]) {
-                const auto u = frd.find(v + 1);
-                if (u != frd.end()) m = std::max(m, u->second.norm());
-            }
-        }
-    // The same relative to the tooth's socket: the mean displacement of the nodes its PDL shares
-    // with the bone. That is how far the tooth moves in its bone (what the PDL allows); the
-    // absolute figure adds whatever the bone itself bends under the load.
-    std::map<int, double> toothInSocketMax;
+    // Per tooth, its largest displacement over its corner nodes (node numbers = index + 1 in the
+    // deck), absolute and relative to its socket: the mean displacement of the nodes its PDL shares
+    // with the bone. The relative one is how far the tooth moves in its bone (what the PDL allows);
+    // the absolute one adds whatever the bone itself bends under the load.
+    std::map<int, double> toothMax, toothInSocketMax;
     std::map<int, Vec3> socketMean;
     if (mesh) {
         std::vector<char> onBone(mesh->nodes.size(), 0);
@@ -137,12 +127,15 @@ nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& ru
         }
         for (std::size_t t = 0; t < mesh->tets.size(); ++t) {
             if (labelKind(mesh->labels[t]) != LabelKind::Tooth) continue;
-            const auto mean = socketMean.find(labelUnn(mesh->labels[t]));
-            if (mean == socketMean.end()) continue;
-            double& m = toothInSocketMax[mean->first];
+            const int unn = labelUnn(mesh->labels[t]);
+            double& m = toothMax[unn];
+            const auto mean = socketMean.find(unn);
+            double* inSocket = mean == socketMean.end() ? nullptr : &toothInSocketMax[unn];
             for (std::int32_t v : mesh->tets[t]) {
                 const auto u = frd.find(v + 1);
-                if (u != frd.end()) m = std::max(m, (u->second - mean->second).norm());
+                if (u == frd.end()) continue;
+                m = std::max(m, u->second.norm());
+                if (inSocket) *inSocket = std::max(*inSocket, (u->second - mean->second).norm());
             }
         }
     }
