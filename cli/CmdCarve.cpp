@@ -31,6 +31,8 @@ struct CarveCliOptions {
     std::vector<double> profile;
     double clearanceVoxels = 1.0;
     double gapBridgeMm = 0.5;
+    double boneShiftMaxMm = 0.2;
+    double apexTaperMm = 1.0;
     bool json = false;
     bool memoryCheck = true;
 };
@@ -55,6 +57,8 @@ nlohmann::json summaryJson(const CarveSummary& s, const CarveOptions& o) {
                               {"pdl_ratio", o.pdlRatio},
                               {"clearance_voxels", o.clearanceVoxels},
                               {"gap_bridge_mm", o.gapBridgeMm},
+                              {"bone_shift_max_mm", o.boneShiftMaxMm},
+                              {"apex_taper_mm", o.apexTaperMm},
                               {"cap_exclusion_mm", o.capExclusionMm}};
     if (o.profile)
         options["pdl_profile_mm"] = {{"cervical", o.profile->cervical}, {"mid_root", o.profile->midRoot}, {"apical", o.profile->apical}};
@@ -87,6 +91,8 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     co.pdlRatio = opt.ratio;
     co.clearanceVoxels = opt.clearanceVoxels;
     co.gapBridgeMm = opt.gapBridgeMm;
+    co.boneShiftMaxMm = opt.boneShiftMaxMm;
+    co.apexTaperMm = opt.apexTaperMm;
     co.axes = surfaces.axes;
     if (!opt.profile.empty()) {
         if (opt.profile.size() != 3) throw Error("--pdl-profile takes three values: cervical,mid,apical (mm)");
@@ -142,6 +148,11 @@ void addCarveCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("--clearance", opt->clearanceVoxels, "Gap between different teeth and PDLs, voxels (default 1)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--gap-bridge", opt->gapBridgeMm, "Widest root-socket gap bridged, mm (default 0.5)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--bone-shift", opt->boneShiftMaxMm,
+                    "Farthest a bridged gap moves the bone surface, mm (default 0.2; wider gaps erode the root less)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--apex-taper", opt->apexTaperMm, "Root erosion fades out over this length to the apex, mm (default 1; 0 = off)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");
     cmd->add_flag("!--no-memory-check", opt->memoryCheck,
                   "Run even when the memory estimate exceeds the available memory");

@@ -60,12 +60,7 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
                         {"peak_memory_bytes", peakResidentMemoryBytes()}};
     if (opt.simplifyOn) {
         j["simplify"] = toJson(stats);
-        j["simplify"]["options"] = {{"tooth_error_mm", opt.simplify.toothErrorMm},
-                                    {"bone_error_mm", opt.simplify.boneErrorMm},
-                                    {"bone_far_error_mm", opt.simplify.boneFarErrorMm},
-                                    {"bone_near_teeth_mm", opt.simplify.boneNearTeethMm},
-                                    {"min_angle_deg", opt.simplify.minAngleDeg},
-                                    {"min_wedge_deg", opt.simplify.minWedgeDeg}};
+        j["simplify"]["options"] = toJson(opt.simplify);
     }
     writeFileAtomically(staged.path() + "/surface.json", [&](std::ostream& os) { os << j.dump(2) << "\n"; }, false);
     staged.commit(StagedFolder::Mode::Merge);  // the folder is the user's: other files in it stay
@@ -83,8 +78,17 @@ void addSurfaceCommand(CLI::App& app, GlobalOptions& global) {
         ->required()
         ->check(CLI::ExistingDirectory);
     cmd->add_option("-o,--output", opt->output, "Output folder")->required();
-    cmd->add_option("--tooth-error", opt->simplify.toothErrorMm, "Error bound on tooth and PDL interfaces, mm (default 0.02)")
+    cmd->add_option("--tooth-error", opt->simplify.toothErrorMm,
+                    "Error bound on the crowns (tooth / outside) and the crest cap, mm (default 0.02)")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--pdl-error", opt->simplify.pdlErrorMm, "Error bound on tooth / PDL and PDL / bone, mm (default 0.02)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--pdl-max-edge", opt->simplify.pdlMaxEdgeMm,
+                    "Longest edge on tooth / PDL and PDL / bone, mm (default 0.4)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--cap-max-edge", opt->simplify.capMaxEdgeMm,
+                    "Longest edge on the crest cap (PDL / outside), mm (default 0.065)")
+        ->check(CLI::PositiveNumber);
     cmd->add_option("--bone-error", opt->simplify.boneErrorMm, "Error bound on the bone surface near teeth, mm (default 0.08)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--bone-far-error", opt->simplify.boneFarErrorMm,

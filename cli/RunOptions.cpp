@@ -3,6 +3,7 @@
 #include "io/Error.h"
 
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <sstream>
 
@@ -24,26 +25,48 @@ void requireRange(const std::string& name, const char* key, double value, double
     throw Error(name, msg.str());
 }
 
-void checkRanges(const std::string& name, const RunOptions& o) {
-    requireRange(name, "voxel_mm", o.voxelSizeMm, 0, 10, true);
-    requireRange(name, "band_voxels", o.bandVoxels, 1, 1000);
-    requireRange(name, "scale", o.load.scale, 0, 1e6);
-    requireRange(name, "pdl_thickness_mm", o.carve.pdlThicknessMm, 0, 10, true);
-    requireRange(name, "pdl_ratio", o.carve.pdlRatio, 0, 1);
-    requireRange(name, "clearance_voxels", o.carve.clearanceVoxels, 0, 100);
-    requireRange(name, "gap_bridge_mm", o.carve.gapBridgeMm, 0, 10);
-    requireRange(name, "surface_tooth_error_mm", o.simplify.toothErrorMm, 0, 10);
-    requireRange(name, "surface_bone_error_mm", o.simplify.boneErrorMm, 0, 10);
-    requireRange(name, "surface_bone_far_error_mm", o.simplify.boneFarErrorMm, 0, 10);
-    requireRange(name, "surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm, 0, 1000);
-    requireRange(name, "surface_min_angle_deg", o.simplify.minAngleDeg, 0, 59);
-    requireRange(name, "surface_min_wedge_deg", o.simplify.minWedgeDeg, 0, 89);
-    // tet_radius_edge is checked where TetGen gets it (tet/Tetrahedralize.h): its Error there
-    // keeps the interface surface made so far, like any other TetGen failure.
-    requireRange(name, "tet_min_dihedral_deg", o.tet.minDihedralDeg, 0, 60);
-    requireRange(name, "tet_pdl_edge_mm", o.tet.pdlEdgeMm, 0, 1000);
-    requireRange(name, "tet_tooth_edge_mm", o.tet.toothEdgeMm, 0, 1000);
-    requireRange(name, "tet_bone_edge_mm", o.tet.boneEdgeMm, 0, 1000);
+/// Every numeric option: its config / run.json key, where it lives, and its valid range.
+struct NumberKey {
+    const char* key;
+    double& (*ref)(RunOptions&);
+    double lo, hi;
+    bool loOpen = false;
+};
+
+constexpr double kAny = std::numeric_limits<double>::infinity();
+
+// tet_radius_edge is checked where TetGen gets it (tet/Tetrahedralize.h): its Error there keeps the
+// interface surface made so far, like any other TetGen failure.
+const NumberKey kNumberKeys[] = {
+    {"voxel_mm", [](RunOptions& o) -> double& { return o.voxelSizeMm; }, 0, 10, true},
+    {"band_voxels", [](RunOptions& o) -> double& { return o.bandVoxels; }, 1, 1000},
+    {"scale", [](RunOptions& o) -> double& { return o.load.scale; }, 0, 1e6},
+    {"pdl_thickness_mm", [](RunOptions& o) -> double& { return o.carve.pdlThicknessMm; }, 0, 10, true},
+    {"pdl_ratio", [](RunOptions& o) -> double& { return o.carve.pdlRatio; }, 0, 1},
+    {"clearance_voxels", [](RunOptions& o) -> double& { return o.carve.clearanceVoxels; }, 0, 100},
+    {"gap_bridge_mm", [](RunOptions& o) -> double& { return o.carve.gapBridgeMm; }, 0, 10},
+    {"bone_shift_max_mm", [](RunOptions& o) -> double& { return o.carve.boneShiftMaxMm; }, 0, 10},
+    {"apex_taper_mm", [](RunOptions& o) -> double& { return o.carve.apexTaperMm; }, 0, 100},
+    {"surface_tooth_error_mm", [](RunOptions& o) -> double& { return o.simplify.toothErrorMm; }, 0, 10},
+    {"surface_pdl_error_mm", [](RunOptions& o) -> double& { return o.simplify.pdlErrorMm; }, 0, 10},
+    {"surface_bone_error_mm", [](RunOptions& o) -> double& { return o.simplify.boneErrorMm; }, 0, 10},
+    {"surface_bone_far_error_mm", [](RunOptions& o) -> double& { return o.simplify.boneFarErrorMm; }, 0, 10},
+    {"surface_bone_near_teeth_mm", [](RunOptions& o) -> double& { return o.simplify.boneNearTeethMm; }, 0, 1000},
+    {"surface_pdl_max_edge_mm", [](RunOptions& o) -> double& { return o.simplify.pdlMaxEdgeMm; }, 0, 100, true},
+    {"surface_cap_max_edge_mm", [](RunOptions& o) -> double& { return o.simplify.capMaxEdgeMm; }, 0, 100, true},
+    {"surface_tooth_max_edge_mm", [](RunOptions& o) -> double& { return o.simplify.toothMaxEdgeMm; }, 0, 100, true},
+    {"surface_bone_max_edge_mm", [](RunOptions& o) -> double& { return o.simplify.boneMaxEdgeMm; }, 0, 100, true},
+    {"surface_min_angle_deg", [](RunOptions& o) -> double& { return o.simplify.minAngleDeg; }, 0, 59},
+    {"surface_min_wedge_deg", [](RunOptions& o) -> double& { return o.simplify.minWedgeDeg; }, 0, 89},
+    {"tet_radius_edge", [](RunOptions& o) -> double& { return o.tet.radiusEdgeRatio; }, -kAny, kAny},
+    {"tet_min_dihedral_deg", [](RunOptions& o) -> double& { return o.tet.minDihedralDeg; }, 0, 60},
+    {"tet_pdl_edge_mm", [](RunOptions& o) -> double& { return o.tet.pdlEdgeMm; }, 0, 1000},
+    {"tet_tooth_edge_mm", [](RunOptions& o) -> double& { return o.tet.toothEdgeMm; }, 0, 1000},
+    {"tet_bone_edge_mm", [](RunOptions& o) -> double& { return o.tet.boneEdgeMm; }, 0, 1000},
+};
+
+void checkRanges(const std::string& name, RunOptions& o) {
+    for (const auto& k : kNumberKeys) requireRange(name, k.key, k.ref(o), k.lo, k.hi, k.loOpen);
     if (o.carve.profile) {
         requireRange(name, "pdl_profile_mm", o.carve.profile->cervical, 0, 10, true);
         requireRange(name, "pdl_profile_mm", o.carve.profile->midRoot, 0, 10, true);
@@ -61,29 +84,12 @@ RunOptions defaultRunOptions() {
     return o;
 }
 
-nlohmann::json runOptionsToJson(const RunOptions& o) {
-    nlohmann::json j = {
-        {"voxel_mm", o.voxelSizeMm},
-        {"band_voxels", o.bandVoxels},
-        {"scale", o.load.scale},
-        {"pdl_thickness_mm", o.carve.pdlThicknessMm},
-        {"pdl_ratio", o.carve.pdlRatio},
-        {"clearance_voxels", o.carve.clearanceVoxels},
-        {"gap_bridge_mm", o.carve.gapBridgeMm},
-        {"surface_tooth_error_mm", o.simplify.toothErrorMm},
-        {"surface_bone_error_mm", o.simplify.boneErrorMm},
-        {"surface_bone_far_error_mm", o.simplify.boneFarErrorMm},
-        {"surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm},
-        {"surface_min_angle_deg", o.simplify.minAngleDeg},
-        {"surface_min_wedge_deg", o.simplify.minWedgeDeg},
-        {"tet_radius_edge", o.tet.radiusEdgeRatio},
-        {"tet_min_dihedral_deg", o.tet.minDihedralDeg},
-        {"tet_pdl_edge_mm", o.tet.pdlEdgeMm},
-        {"tet_tooth_edge_mm", o.tet.toothEdgeMm},
-        {"tet_bone_edge_mm", o.tet.boneEdgeMm},
-        {"write_levelsets", o.writeLevelSets},
-        {"from_vdb", o.fromVdb},
-    };
+nlohmann::json runOptionsToJson(const RunOptions& options) {
+    RunOptions o = options;  // the key table hands out references
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& k : kNumberKeys) j[k.key] = k.ref(o);
+    j["write_levelsets"] = o.writeLevelSets;
+    j["from_vdb"] = o.fromVdb;
     if (o.carve.profile)
         j["pdl_profile_mm"] = {o.carve.profile->cervical, o.carve.profile->midRoot, o.carve.profile->apical};
     return j;
@@ -110,24 +116,7 @@ void applyRunConfigText(const std::string& text, const std::string& path, RunOpt
     for (const auto& [key, value] : j.items())
         if (!known.contains(key) && key != "pdl_profile_mm") throw Error(path, "unknown config key '" + key + "'");
     try {
-        readKey(j, "voxel_mm", o.voxelSizeMm);
-        readKey(j, "band_voxels", o.bandVoxels);
-        readKey(j, "scale", o.load.scale);
-        readKey(j, "pdl_thickness_mm", o.carve.pdlThicknessMm);
-        readKey(j, "pdl_ratio", o.carve.pdlRatio);
-        readKey(j, "clearance_voxels", o.carve.clearanceVoxels);
-        readKey(j, "gap_bridge_mm", o.carve.gapBridgeMm);
-        readKey(j, "surface_tooth_error_mm", o.simplify.toothErrorMm);
-        readKey(j, "surface_bone_error_mm", o.simplify.boneErrorMm);
-        readKey(j, "surface_bone_far_error_mm", o.simplify.boneFarErrorMm);
-        readKey(j, "surface_bone_near_teeth_mm", o.simplify.boneNearTeethMm);
-        readKey(j, "surface_min_angle_deg", o.simplify.minAngleDeg);
-        readKey(j, "surface_min_wedge_deg", o.simplify.minWedgeDeg);
-        readKey(j, "tet_radius_edge", o.tet.radiusEdgeRatio);
-        readKey(j, "tet_min_dihedral_deg", o.tet.minDihedralDeg);
-        readKey(j, "tet_pdl_edge_mm", o.tet.pdlEdgeMm);
-        readKey(j, "tet_tooth_edge_mm", o.tet.toothEdgeMm);
-        readKey(j, "tet_bone_edge_mm", o.tet.boneEdgeMm);
+        for (const auto& k : kNumberKeys) readKey(j, k.key, k.ref(o));
         readKey(j, "write_levelsets", o.writeLevelSets);
         readKey(j, "from_vdb", o.fromVdb);
         if (j.contains("pdl_profile_mm")) {

@@ -346,7 +346,7 @@ private:
         const LabelKind kb = b == kOutsideLabel ? LabelKind::Outside : labelKind(b);
         const auto has = [&](LabelKind k) { return ka == k || kb == k; };
         if (has(LabelKind::Pdl) && has(LabelKind::Outside)) return {opt_.toothErrorMm, opt_.capMaxEdgeMm, opt_.toothErrorMm};
-        if (has(LabelKind::Pdl)) return {opt_.toothErrorMm, opt_.pdlMaxEdgeMm, opt_.toothErrorMm};
+        if (has(LabelKind::Pdl)) return {opt_.pdlErrorMm, opt_.pdlMaxEdgeMm, opt_.pdlErrorMm};
         if (has(LabelKind::Tooth)) return {opt_.toothErrorMm, opt_.toothMaxEdgeMm, opt_.toothErrorMm};
         return {opt_.boneErrorMm, opt_.boneMaxEdgeMm, std::max(opt_.boneErrorMm, opt_.boneFarErrorMm)};
     }
@@ -829,6 +829,15 @@ nlohmann::json toJson(const SimplifyStats& s) {
             {"edges_below_min_wedge", s.edgesBelowMinWedge}};
 }
 
+nlohmann::json toJson(const SimplifyOptions& o) {
+    return {{"tooth_error_mm", o.toothErrorMm},       {"pdl_error_mm", o.pdlErrorMm},
+            {"bone_error_mm", o.boneErrorMm},         {"bone_far_error_mm", o.boneFarErrorMm},
+            {"bone_near_teeth_mm", o.boneNearTeethMm}, {"pdl_max_edge_mm", o.pdlMaxEdgeMm},
+            {"cap_max_edge_mm", o.capMaxEdgeMm},      {"tooth_max_edge_mm", o.toothMaxEdgeMm},
+            {"bone_max_edge_mm", o.boneMaxEdgeMm},    {"min_angle_deg", o.minAngleDeg},
+            {"min_wedge_deg", o.minWedgeDeg}};
+}
+
 std::string interfaceKind(Label a, Label b) {
     using K = LabelKind;
     const auto kind = [](Label l) { return l == kOutsideLabel ? K::Outside : labelKind(l); };
@@ -966,7 +975,7 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     const auto start = std::chrono::steady_clock::now();
     if (input.sides.size() != input.surface.triangles.size())
         throw Error("simplification: one label pair per triangle is required");
-    for (double x : {options.toothErrorMm, options.boneErrorMm, options.boneFarErrorMm, options.boneNearTeethMm,
+    for (double x : {options.toothErrorMm, options.pdlErrorMm, options.boneErrorMm, options.boneFarErrorMm, options.boneNearTeethMm,
                      options.pdlMaxEdgeMm, options.capMaxEdgeMm, options.toothMaxEdgeMm, options.boneMaxEdgeMm})
         if (!(x >= 0) || !std::isfinite(x)) throw Error("simplification: error bounds and edge lengths must be >= 0");
     if (!(options.minAngleDeg >= 0 && options.minAngleDeg < 60))

@@ -40,7 +40,8 @@
 namespace jawmesh {
 
 struct SimplifyOptions {
-    double toothErrorMm = 0.02;   ///< bound on interfaces of teeth and PDLs (well under a 0.05 mm voxel)
+    double toothErrorMm = 0.02;   ///< bound on tooth / outside and the crest cap (PDL / outside), mm
+    double pdlErrorMm = 0.02;     ///< bound on tooth / PDL and PDL / bone (well under a 0.05 mm voxel)
     double boneErrorMm = 0.08;    ///< bound on bone / outside within boneNearTeethMm of a tooth or PDL
     double boneFarErrorMm = 0.15; ///< bound on bone / outside farther away (max with boneErrorMm)
     double boneNearTeethMm = 2.0; ///< "near a tooth" (filters/NearTeeth.h)
@@ -89,6 +90,9 @@ struct SimplifyStats {
 
 /// The stats as recorded in run.json and `jawmesh surface --json`.
 nlohmann::json toJson(const SimplifyStats& stats);
+
+/// The options as recorded in `jawmesh surface`'s summary.
+nlohmann::json toJson(const SimplifyOptions& options);
 
 /// Interface kind of a label pair, as used in SimplifyStats and reports.
 std::string interfaceKind(Label a, Label b);

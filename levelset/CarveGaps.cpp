@@ -44,6 +44,8 @@ struct Params {
     double uniformThickness = 0.2;
     std::optional<PdlProfile> profile;
     double gapBridge = 0.5;
+    double boneShiftMax = 0.2;
+    double apexTaper = 1.0;
     double clearance = 0.05;
     double far = 0.7;     ///< distances beyond the gap-bridging reach are reported as this (mm)
 };
@@ -56,16 +58,24 @@ struct ToothWork {
                              ///< within gap-bridging reach; +-far elsewhere outside the band
     FloatGrid::Ptr X;        ///< bone distance outside the bone band, where this tooth is within reach
     CoordBBox box;           ///< index bounds of T's active voxels
-    bool profiled = false;
-    Vec3d origin{0, 0, 0}, axis{0, 0, 1};
+    bool hasRoot = false;    ///< axis, cervical and apical heights found (fitRootAxis)
+    Vec3d origin{0, 0, 0}, axis{0, 0, 1};  ///< axis points from the root to the crown
     double hCervical = 0, hApex = 0;
 };
 
 double thicknessAt(const ToothWork& t, const Params& P, const Vec3d& world) {
-    if (!t.profiled) return P.uniformThickness;
+    if (!P.profile || !t.hasRoot) return P.uniformThickness;
     const double h = (world - t.origin).dot(t.axis);
     const double s = (t.hCervical - h) / std::max(t.hCervical - t.hApex, 1e-6);
     return pdlThicknessAt(*P.profile, s);
+}
+
+/// Share of the root erosion applied at a point: 1 except over the last apexTaper mm to the apex,
+/// where it falls linearly to 0. Eroding a pointed apex by e pulls the tip back by e / sin(half
+/// angle), more than e; with the taper the tip stays put and the socket side takes the thickness.
+double erosionShare(const ToothWork& t, const Params& P, const Vec3d& world) {
+    if (!t.hasRoot || P.apexTaper <= 0) return 1.0;
+    return std::clamp(((world - t.origin).dot(t.axis) - t.hApex) / P.apexTaper, 0.0, 1.0);
 }
 
 /// Signed bone distance: the tooth's extension X (exterior voxels within reach), else the input
@@ -95,9 +105,11 @@ Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& X, F
     Local r;
     r.T = T.getValue(c);
     const double b = signedBone(B, X, P, c);
-    const double th = thicknessAt(t, P, xf.indexToWorld(c));
-    const double e = P.ratio * th, w = th - e;
-    double gap = r.T + b - P.gapBridge;
+    const Vec3d world = xf.indexToWorld(c);
+    const double th = thicknessAt(t, P, world);
+    double e = P.ratio * th * erosionShare(t, P, world), w = th - e;
+    const double g = r.T + b;  // root-socket gap where the surfaces face each other (file comment)
+    double gap = g - P.gapBridge;
     if (gap < 0) {
         const Coord dx(1, 0, 0), dy(0, 1, 0), dz(0, 0, 1);
         const Vec3d gT(T.getValue(c + dx) - T.getValue(c - dx), T.getValue(c + dy) - T.getValue(c - dy),
@@ -109,6 +121,12 @@ Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& X, F
         // A clamped field (outside its band) has no direction: treat as not facing.
         const double dot = (lT > 1e-3 * P.voxel && lB > 1e-3 * P.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
         gap = std::max(gap, (dot + kFacingCos) * P.gapBridge);
+        // A bridged gap wider than w + boneShiftMax: the PDL moves out to meet the bone where it
+        // has moved boneShiftMax, eroding the root less (and, past that, the PDL thickens).
+        if (gap < 0 && g - w > P.boneShiftMax) {
+            w = g - P.boneShiftMax;
+            e = std::max(0.0, th - w);
+        }
     }
     const double socket = std::min(b - e, gap);  // < 0: in the socket of this tooth
     // Exact ties (input bands sampled exactly at T = -e, T = w or on the cap) must land in exactly
@@ -149,57 +167,16 @@ double bisector(int k, const std::vector<int>& cand, Accessors& acc, const Coord
     return v;
 }
 
-/// The working fields of one tooth. The tooth band is used as given (re-normalised only when the
-/// input band is narrower than the PDL rules need). Gap bridging needs T and B beyond their bands,
-/// but only where a gap can be: outside both, with T + B < gapBridge, so T < gapBridge and
-/// B < gapBridge + e. There (and only there) both are extended by closest-point propagation
-/// (extendExteriorDistance): B within reach of the tooth, then T where bone is near.
-void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, const Params& P, double exVoxels,
-                  double inVoxels) {
-    FloatGrid::Ptr T;
-    if (bandHalfWidthMm(tooth) >= std::max(exVoxels, inVoxels) * P.voxel - 1e-6)
-        T = tooth.deepCopy();
-    else
-        T = renormalizeLevelSet(tooth, exVoxels + 1, inVoxels + 1);
-    const double bgT = bandHalfWidthMm(*T);
-    // Chebyshev dilation of the band by `reach` voxels covers every point with T < gapBridge.
-    const int reach = std::max(0, int(std::ceil((P.gapBridge - bgT) / P.voxel)) + 1);
-    openvdb::MaskTree near(T->tree(), false, openvdb::TopologyCopy());
-    if (reach > 0)
-        openvdb::tools::dilateActiveValues(near, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
-    // Bone distances are not needed deeper in the tooth than e (there it is tooth whatever B is).
-    const double eMax = P.ratio * (P.profile ? std::max({P.profile->cervical, P.profile->midRoot, P.profile->apical})
-                                             : P.uniformThickness);
-    {
-        const float deep = float(-(eMax + P.voxel));
-        auto ta = T->getConstAccessor();
-        for (auto leaf = near.beginLeaf(); leaf; ++leaf)
-            for (openvdb::Index i = 0; i < openvdb::MaskTree::LeafNodeType::SIZE; ++i)
-                if (leaf->isValueOn(i) && ta.getValue(leaf->offsetToGlobalCoord(i)) < deep) leaf->setValueOff(i);
-    }
-    t.X = extendExteriorDistance(bone, near, P.far);
-    openvdb::MaskTree nearBone(t.X->tree(), false, openvdb::TopologyCopy());
-    for (auto leaf = near.cbeginLeaf(); leaf; ++leaf)
-        if (const auto* bl = bone.tree().probeConstLeaf(leaf->origin()))
-            nearBone.touchLeaf(leaf->origin())->getValueMask() |= bl->getValueMask();
-    nearBone.topologyIntersection(near);
-    const auto Tx = extendExteriorDistance(*T, nearBone, P.far);
-    openvdb::tools::changeLevelSetBackground(T->tree(), float(P.far));
-    auto ta = T->getAccessor();
-    for (auto it = Tx->tree().cbeginValueOn(); it; ++it) ta.setValue(it.getCoord(), *it);
-    t.T = T;
-    t.box = T->evalActiveVoxelBoundingBox();
-}
-
-/// Long axis of the tooth and the cervical / apical heights along it, for the thickness profile.
-void fitProfileAxis(ToothWork& t, const Params& P, const FloatGrid& bone, const CarveOptions& options) {
+/// Long axis of the tooth and the cervical / apical heights along it, for the thickness profile
+/// and the apex taper of the erosion.
+void fitRootAxis(ToothWork& t, const Params& P, const FloatGrid& bone, const CarveOptions& options) {
     const auto& xf = t.T->transform();
     std::vector<Vec3d> surface;
     std::vector<char> contact;
     auto T = t.T->getConstAccessor();
     auto X = t.X->getConstAccessor();
     auto B = bone.getConstAccessor();
-    const double eCervical = P.ratio * P.profile->cervical;
+    const double eCervical = P.ratio * (P.profile ? P.profile->cervical : P.uniformThickness);
     for (auto it = t.T->tree().cbeginValueOn(); it; ++it) {
         const double v = *it;
         if (v >= 0 || v < -2 * P.voxel) continue;
@@ -242,13 +219,73 @@ void fitProfileAxis(ToothWork& t, const Params& P, const FloatGrid& bone, const 
     if (hContact.empty()) return;
     std::sort(hContact.begin(), hContact.end());
     t.hCervical = hContact[std::size_t(0.95 * double(hContact.size() - 1))];
-    t.profiled = t.hCervical > t.hApex;
+    t.hasRoot = t.hCervical > t.hApex;
+}
+
+/// The working fields of one tooth. The tooth band is used as given (re-normalised only when the
+/// input band is narrower than the PDL rules need). Gap bridging needs T and B beyond their bands,
+/// but only where a gap can be: outside both, with T + B < gapBridge, so T < gapBridge and
+/// B < gapBridge + e. There (and only there) both are extended by closest-point propagation
+/// (extendExteriorDistance): B within reach of the tooth, then T where bone is near.
+void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, const Params& P, double exVoxels,
+                  double inVoxels, const CarveOptions& options) {
+    FloatGrid::Ptr T;
+    if (bandHalfWidthMm(tooth) >= std::max(exVoxels, inVoxels) * P.voxel - 1e-6)
+        T = tooth.deepCopy();
+    else
+        T = renormalizeLevelSet(tooth, exVoxels + 1, inVoxels + 1);
+    const double bgT = bandHalfWidthMm(*T);
+    // Chebyshev dilation of the band by `reach` voxels covers every point with T < gapBridge.
+    const int reach = std::max(0, int(std::ceil((P.gapBridge - bgT) / P.voxel)) + 1);
+    openvdb::MaskTree near(T->tree(), false, openvdb::TopologyCopy());
+    if (reach > 0)
+        openvdb::tools::dilateActiveValues(near, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
+    // Bone distances are not needed deeper in the tooth than e (there it is tooth whatever B is).
+    const double eMax = P.ratio * (P.profile ? std::max({P.profile->cervical, P.profile->midRoot, P.profile->apical})
+                                             : P.uniformThickness);
+    {
+        const float deep = float(-(eMax + P.voxel));
+        auto ta = T->getConstAccessor();
+        for (auto leaf = near.beginLeaf(); leaf; ++leaf)
+            for (openvdb::Index i = 0; i < openvdb::MaskTree::LeafNodeType::SIZE; ++i)
+                if (leaf->isValueOn(i) && ta.getValue(leaf->offsetToGlobalCoord(i)) < deep) leaf->setValueOff(i);
+    }
+    t.X = extendExteriorDistance(bone, near, P.far);
+    t.T = T;
+    fitRootAxis(t, P, bone, options);
+    openvdb::MaskTree nearBone(t.X->tree(), false, openvdb::TopologyCopy());
+    for (auto leaf = near.cbeginLeaf(); leaf; ++leaf)
+        if (const auto* bl = bone.tree().probeConstLeaf(leaf->origin()))
+            nearBone.touchLeaf(leaf->origin())->getValueMask() |= bl->getValueMask();
+    // Near the apex the socket side may widen by the whole thickness (erosionShare), past the
+    // band: T is needed there whether or not the bone band reaches.
+    if (t.hasRoot && P.apexTaper > 0) {
+        const auto& xf = T->transform();
+        const double top = t.hApex + P.apexTaper + P.voxel;
+        for (auto leaf = near.cbeginLeaf(); leaf; ++leaf) {
+            openvdb::MaskTree::LeafNodeType* out = nullptr;
+            for (auto v = leaf->cbeginValueOn(); v; ++v)
+                if ((xf.indexToWorld(v.getCoord()) - t.origin).dot(t.axis) < top) {
+                    if (!out) out = nearBone.touchLeaf(leaf->origin());
+                    out->setValueOn(v.pos());
+                }
+        }
+    }
+    nearBone.topologyIntersection(near);
+    const auto Tx = extendExteriorDistance(*T, nearBone, P.far);
+    openvdb::tools::changeLevelSetBackground(T->tree(), float(P.far));
+    auto ta = T->getAccessor();
+    for (auto it = Tx->tree().cbeginValueOn(); it; ++it) ta.setValue(it.getCoord(), *it);
+    t.T = T;
+    t.box = T->evalActiveVoxelBoundingBox();
 }
 
 void validate(const CarveOptions& o, const FloatGrid& bone, const std::map<int, FloatGrid::ConstPtr>& teeth) {
     if (!(o.pdlRatio >= 0 && o.pdlRatio <= 1)) throw Error("carve: --pdl-ratio must be in [0, 1]");
     if (!(o.clearanceVoxels >= 0)) throw Error("carve: clearance must be >= 0 voxels");
     if (!(o.gapBridgeMm >= 0)) throw Error("carve: gap bridge must be >= 0 mm");
+    if (!(o.boneShiftMaxMm >= 0)) throw Error("carve: bone shift must be >= 0 mm");
+    if (!(o.apexTaperMm >= 0)) throw Error("carve: apex taper must be >= 0 mm");
     const double tMin = o.profile ? std::min({o.profile->cervical, o.profile->midRoot, o.profile->apical}) : o.pdlThicknessMm;
     if (!(tMin > 0)) throw Error("carve: PDL thickness must be > 0 mm");
     const double voxel = uniformVoxelSizeMm(bone);
@@ -279,6 +316,8 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
     P.uniformThickness = options.profile ? options.profile->midRoot : options.pdlThicknessMm;
     P.profile = options.profile;
     P.gapBridge = options.gapBridgeMm;
+    P.boneShiftMax = options.boneShiftMaxMm;
+    P.apexTaper = options.apexTaperMm;
     P.clearance = options.clearanceVoxels * P.voxel;
     const double tMax = P.profile ? std::max({P.profile->cervical, P.profile->midRoot, P.profile->apical}) : P.uniformThickness;
     const double eMax = P.ratio * tMax, wMax = tMax - eMax;
@@ -309,8 +348,7 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
             t.unn = in[i].first;
             t.toothL = toothLabel(t.unn);
             t.pdlL = pdlLabel(t.unn);
-            prepareTooth(t, *in[i].second, bone, P, std::max(exVoxels, 1.0), std::max(inVoxels, 1.0));
-            if (P.profile) fitProfileAxis(t, P, bone, options);
+            prepareTooth(t, *in[i].second, bone, P, std::max(exVoxels, 1.0), std::max(inVoxels, 1.0), options);
             stage.update(double(++done) / double(in.size()));
         });
         progress.checkCancelled();
@@ -531,7 +569,7 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
                 summary.warnings.push_back("tooth " + std::to_string(t.unn) + " has no bone contact: no PDL");
             else if (s.impacted)
                 summary.warnings.push_back("tooth " + std::to_string(t.unn) + " is fully inside bone: closed PDL envelope");
-            if (P.profile && !t.profiled)
+            if (P.profile && !t.hasRoot)
                 summary.warnings.push_back("tooth " + std::to_string(t.unn) + ": no root found for the thickness profile; uniform mid-root value used");
             summary.teeth.push_back(s);
         }

@@ -269,6 +269,54 @@ TEST(Carve, ProfileChangesThicknessAlongTheRoot) {
                              [](const std::string& w) { return w.find("tooth 26") != std::string::npos; }));
 }
 
+TEST(Carve, ApexKeepsItsPlaceAndItsPdlTheThickness) {
+    // Down the axis of the exact-fit tooth 26 through its apex (input at z = -6.2): the erosion
+    // fades out towards the apex, so the tooth reaches the input apex and the socket side widens
+    // by the whole thickness; with the taper off the apex is eroded by e = 0.1 mm.
+    const auto& j = syntheticJaw();
+    const double apexZ = -5.0 - 1.2;
+    const auto at = [&](const LabelField& f, double dz) { return labelAt(f, Vec3d(3.4, 0, apexZ + dz)); };
+    const auto& f = carvedDefault().field;
+    EXPECT_EQ(at(f, 0.05), toothLabel(26));
+    EXPECT_EQ(at(f, -0.03), pdlLabel(26));
+    EXPECT_EQ(at(f, -0.12), pdlLabel(26));  // nearest voxel centre 0.1 mm below the apex
+    EXPECT_EQ(at(f, -0.3), boneLabel(Jaw::Mandible));
+    EXPECT_NEAR(toothSummary(carvedDefault().summary, 26).thickness.mean, 0.2, 0.01);
+    CarveOptions o;
+    o.apexTaperMm = 0;
+    CarveSummary s;
+    const auto off = carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s);
+    EXPECT_EQ(at(off, 0.05), pdlLabel(26));
+    EXPECT_EQ(at(off, -0.17), boneLabel(Jaw::Mandible));
+}
+
+TEST(Carve, WideGapMovesTheBoneAtMostTheBoneShift) {
+    // Tooth 24 sits in a socket 0.25 mm wider than its root. Default: the bone moves 0.15 mm
+    // (0.25 - w), under the 0.2 mm bound. With the bound at 0.05 mm the PDL moves out instead:
+    // root not eroded, bone surface 0.05 mm from the input socket, thickness still 0.2 mm; at 0 the
+    // bone stays put and the PDL fills the whole 0.25 mm gap.
+    const auto& j = syntheticJaw();
+    const double r = 1.2;
+    const auto at = [&](const LabelField& f, double d) { return labelAt(f, Vec3d(-2.0, d, -2.5)); };
+    const auto& def = carvedDefault().field;
+    EXPECT_EQ(at(def, r - 0.05), pdlLabel(24));
+    EXPECT_EQ(at(def, r + 0.15), boneLabel(Jaw::Mandible));
+    CarveOptions o;
+    o.boneShiftMaxMm = 0.05;
+    CarveSummary s;
+    const auto shifted = carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s);
+    EXPECT_EQ(at(shifted, r - 0.05), toothLabel(24));
+    EXPECT_EQ(at(shifted, r + 0.05), pdlLabel(24));
+    EXPECT_EQ(at(shifted, r + 0.15), pdlLabel(24));
+    EXPECT_EQ(at(shifted, r + 0.25), boneLabel(Jaw::Mandible));
+    EXPECT_NEAR(toothSummary(s, 24).thickness.mean, 0.2, 0.01);
+    o.boneShiftMaxMm = 0;
+    const auto kept = carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s);
+    EXPECT_EQ(at(kept, r + 0.2), pdlLabel(24));
+    EXPECT_EQ(at(kept, r + 0.3), boneLabel(Jaw::Mandible));
+    EXPECT_NEAR(toothSummary(s, 24).thickness.mean, 0.25, 0.015);
+}
+
 TEST(Carve, RejectsBadOptions) {
     const auto& j = syntheticJaw();
     CarveSummary s;
@@ -277,6 +325,12 @@ TEST(Carve, RejectsBadOptions) {
     EXPECT_THROW(carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s), Error);
     o = CarveOptions();
     o.pdlThicknessMm = 0.06;  // under 2 voxels
+    EXPECT_THROW(carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s), Error);
+    o = CarveOptions();
+    o.boneShiftMaxMm = -0.1;
+    EXPECT_THROW(carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s), Error);
+    o = CarveOptions();
+    o.apexTaperMm = std::nan("");
     EXPECT_THROW(carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s), Error);
     auto other = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(1.0f, openvdb::Vec3f(0), 0.1f);
     auto teeth = j.teeth;
