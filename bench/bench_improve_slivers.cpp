@@ -1,5 +1,6 @@
 // Sliver improvement on a written mesh: reads a Gmsh .msh (e.g. a run's volumetric mesh), runs
 // improveSlivers and prints what it did, so its effect and cost can be measured on real output.
+#include "filters/TriangleGeometry.h"
 #include "io/GmshReader.h"
 #include "tet/ElementQuality.h"
 #include "tet/TetFaceAdjacency.h"
@@ -7,18 +8,20 @@
 #include "tet/ValidateTetMesh.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <string>
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: bench_improve_slivers <mesh.msh> [target-deg]\n");
+        std::fprintf(stderr, "usage: bench_improve_slivers <mesh.msh> [target-deg] [max-passes]\n");
         return 2;
     }
     jawmesh::TetMesh mesh = jawmesh::readGmsh(argv[1]);
     jawmesh::SliverOptions o;
     if (argc > 2) o.targetMinDihedralDeg = std::stod(argv[2]);
+    if (argc > 3) o.maxPasses = std::stoi(argv[3]);
     const jawmesh::ValidationReport before = jawmesh::validateTetMesh(mesh, {});
     jawmesh::SliverStats s;
     jawmesh::improveSlivers(mesh, o, &s);
@@ -32,25 +35,44 @@ int main(int argc, char** argv) {
     const jawmesh::TetFaceAdjacency adj = jawmesh::tetFaceAdjacency(mesh);
     std::set<std::int32_t> onInterface;
     std::map<std::int32_t, int> interfaceFacesOf;
+    std::map<std::int32_t, double> worstInterfaceAngleOf;  // smallest triangle angle of its interface faces
     for (std::size_t g = 0; g < adj.groupCount(); ++g) {
         const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
         if (jawmesh::insideOneRegion(adj, mesh, g)) continue;
         onInterface.insert(f0.key.begin(), f0.key.end());
-        for (std::size_t i = std::size_t(adj.groupStart[g]); i < std::size_t(adj.groupStart[g + 1]); ++i) interfaceFacesOf[adj.faces[i].tet]++;
+        const double angle = jawmesh::minAngleDeg(mesh.nodes[std::size_t(f0.key[0])], mesh.nodes[std::size_t(f0.key[1])],
+                                                  mesh.nodes[std::size_t(f0.key[2])]);
+        for (std::size_t i = std::size_t(adj.groupStart[g]); i < std::size_t(adj.groupStart[g + 1]); ++i) {
+            interfaceFacesOf[adj.faces[i].tet]++;
+            auto [it, fresh] = worstInterfaceAngleOf.emplace(adj.faces[i].tet, angle);
+            if (!fresh) it->second = std::min(it->second, angle);
+        }
     }
     std::map<std::pair<int, int>, int> kinds;  // (interface nodes, interface faces) -> count
     std::map<jawmesh::Label, int> byLabel;
+    std::map<int, int> byFaceAngle;  // smallest interface-face angle, 5-degree bins (-1: no interface face)
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const auto& e = mesh.tets[t];
         const auto sh = jawmesh::tetShape(mesh.nodes[std::size_t(e[0])], mesh.nodes[std::size_t(e[1])], mesh.nodes[std::size_t(e[2])],
                                           mesh.nodes[std::size_t(e[3])]);
         if (sh.minDihedralDeg >= o.targetMinDihedralDeg) continue;
+        if (std::getenv("BENCH_LIST")) {
+            const auto c = (mesh.nodes[std::size_t(e[0])] + mesh.nodes[std::size_t(e[1])] + mesh.nodes[std::size_t(e[2])] +
+                            mesh.nodes[std::size_t(e[3])]) / 4.0;
+            std::printf("  bad tet %zu label %d min dihedral %.2f at (%.2f, %.2f, %.2f), %d interface faces\n", t, mesh.labels[t],
+                        sh.minDihedralDeg, c.x(), c.y(), c.z(), interfaceFacesOf[std::int32_t(t)]);
+        }
         int nodes = 0;
         for (auto v : e) nodes += int(onInterface.count(v));
         kinds[{nodes, interfaceFacesOf[std::int32_t(t)]}]++;
         byLabel[mesh.labels[t] < 100 ? 1 : mesh.labels[t] < 200 ? 100 : 200]++;
+        const auto w = worstInterfaceAngleOf.find(std::int32_t(t));
+        byFaceAngle[w == worstInterfaceAngleOf.end() ? -1 : 5 * int(w->second / 5)]++;
     }
     for (const auto& [k, n] : kinds) std::printf("  left: %d tets with %d interface nodes, %d interface faces\n", n, k.first, k.second);
+    for (const auto& [a, n] : byFaceAngle)
+        if (a < 0) std::printf("  left: %d tets without an interface face\n", n);
+        else std::printf("  left: %d tets whose worst interface face has its smallest angle in [%d, %d) deg\n", n, a, a + 5);
     for (const auto& [l, n] : byLabel) std::printf("  left in %s: %d\n", l == 1 ? "bone" : l == 100 ? "teeth" : "pdl", n);
     return 0;
 }

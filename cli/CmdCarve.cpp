@@ -151,7 +151,7 @@ void addCarveCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("--bone-shift", opt->boneShiftMaxMm,
                     "Farthest a bridged gap moves the bone surface, mm (default 0.2; wider gaps erode the root less)")
         ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--apex-taper", opt->apexTaperMm, "Root erosion fades out over this length to the apex, mm (default 1; 0 = off)")
+    cmd->add_option("--apex-taper", opt->apexTaperMm, "Root erosion falls to half over this length to the apex, mm (default 1; 0 = off)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");
     cmd->add_flag("!--no-memory-check", opt->memoryCheck,

@@ -12,9 +12,9 @@
 //    Wide gaps: where T + B = g exceeds w + boneShiftMax (default 0.2 mm), the PDL moves out to
 //    w = g - boneShiftMax and e = max(0, t - w): the bone surface moves at most boneShiftMax,
 //    the root is eroded less, and only past g = t + boneShiftMax does the PDL get thicker than t.
-//  * Apex: e falls linearly to 0 over the last apexTaper mm (default 1) of the root along the
-//    tooth's long axis (w = t - e takes the rest), so a pointed apex is not pulled back by more
-//    than e (erosion moves a tip of half angle a by e / sin a).
+//  * Apex: e falls linearly to e / 2 over the last apexTaper mm (default 1) of the root along the
+//    tooth's long axis (w = t - e takes the rest), so a pointed apex is pulled back by no more
+//    than about e (erosion moves a tip of half angle a by e / sin a).
 //  * Tooth i keeps T <= -e, and T <= 0 outside the socket: only the root is eroded, the crown keeps
 //    its input shape exactly.
 //  * PDL i = {-e < T < w} inside the socket. Its top (the cap) is therefore the surface {B = e},
@@ -57,7 +57,7 @@ struct CarveOptions {
     double clearanceVoxels = 1.0;       ///< gap between different teeth / PDLs, voxels
     double gapBridgeMm = 0.5;           ///< widest root-socket gap bridged (see file comment)
     double boneShiftMaxMm = 0.2;        ///< farthest a bridged gap moves the bone surface (file comment)
-    double apexTaperMm = 1.0;           ///< root erosion fades out over this length to the apex; 0 = off
+    double apexTaperMm = 1.0;           ///< root erosion falls to half over this length to the apex; 0 = off
     double capExclusionMm = 0.3;        ///< thickness statistics ignore points this close to the outside
     std::map<int, ToothAxes> axes;      ///< optional tooth axes (long axis for the profile)
 };

@@ -491,6 +491,20 @@ private:
             const Vec3 out = (P(f[0]) - P(e[std::size_t(k)])).dot(n) > 0 ? n : Vec3(-n);
             boundary.emplace_back(k, out.normalized());
         }
+        // On a region-boundary face: where the apex of a regular tet on that face would be, and
+        // lower (a tet with one boundary face is best mended by a vertex above that face).
+        for (const auto& [k, out] : boundary) {
+            Vec3 c = Vec3::Zero();
+            double edges = 0;
+            for (int v = 0, n = 0; v < 4; ++v)
+                if (v != k) {
+                    c += P(e[std::size_t(v)]) / 3.0;
+                    for (int w = v + 1; w < 4; ++w)
+                        if (w != k) edges += (P(e[std::size_t(v)]) - P(e[std::size_t(w)])).norm() / 3.0, ++n;
+                }
+            const double regularHeight = std::sqrt(2.0 / 3.0) * edges;
+            for (double h : {1.0, 0.7, 0.45}) starts.push_back(c - h * regularHeight * out);
+        }
         for (std::size_t i = 0; i < boundary.size(); ++i)
             for (std::size_t j = i + 1; j < boundary.size(); ++j) {
                 // the edge shared by the faces opposite vertices k1 and k2: the other two vertices

@@ -269,25 +269,25 @@ TEST(Carve, ProfileChangesThicknessAlongTheRoot) {
                              [](const std::string& w) { return w.find("tooth 26") != std::string::npos; }));
 }
 
-TEST(Carve, ApexKeepsItsPlaceAndItsPdlTheThickness) {
-    // Down the axis of the exact-fit tooth 26 through its apex (input at z = -6.2): the erosion
-    // fades out towards the apex, so the tooth reaches the input apex and the socket side widens
-    // by the whole thickness; with the taper off the apex is eroded by e = 0.1 mm.
+TEST(Carve, ApexErosionHalvesAndItsPdlKeepsTheThickness) {
+    // Down the axis of the exact-fit tooth 26 through its apex (input at z = -6.2), PDL 0.3 mm
+    // (e = w = 0.15): the erosion falls to half (0.075 mm) at the apex and the socket side widens
+    // to 0.225 mm; with the taper off the apex is eroded by 0.15 mm. Voxel centres every 0.05 mm.
     const auto& j = syntheticJaw();
-    const double apexZ = -5.0 - 1.2;
-    const auto at = [&](const LabelField& f, double dz) { return labelAt(f, Vec3d(3.4, 0, apexZ + dz)); };
-    const auto& f = carvedDefault().field;
-    EXPECT_EQ(at(f, 0.05), toothLabel(26));
-    EXPECT_EQ(at(f, -0.03), pdlLabel(26));
-    EXPECT_EQ(at(f, -0.12), pdlLabel(26));  // nearest voxel centre 0.1 mm below the apex
-    EXPECT_EQ(at(f, -0.3), boneLabel(Jaw::Mandible));
-    EXPECT_NEAR(toothSummary(carvedDefault().summary, 26).thickness.mean, 0.2, 0.01);
+    const int apexK = -124;  // z = -6.2 = -124 voxels; the axis x = 3.4 is voxel column 68
+    const auto at = [&](const LabelField& f, int dk) { return f.labels->tree().getValue(Coord(68, 0, apexK + dk)); };
     CarveOptions o;
-    o.apexTaperMm = 0;
+    o.pdlThicknessMm = 0.3;
     CarveSummary s;
+    const auto f = carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s);
+    EXPECT_EQ(at(f, 2), toothLabel(26));  // 0.1 mm inside the input apex
+    EXPECT_EQ(at(f, -4), pdlLabel(26));   // 0.2 mm outside
+    EXPECT_EQ(at(f, -6), boneLabel(Jaw::Mandible));
+    EXPECT_NEAR(toothSummary(s, 26).thickness.mean, 0.3, 0.015);
+    o.apexTaperMm = 0;
     const auto off = carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s);
-    EXPECT_EQ(at(off, 0.05), pdlLabel(26));
-    EXPECT_EQ(at(off, -0.17), boneLabel(Jaw::Mandible));
+    EXPECT_EQ(at(off, 2), pdlLabel(26));
+    EXPECT_EQ(at(off, -4), boneLabel(Jaw::Mandible));
 }
 
 TEST(Carve, WideGapMovesTheBoneAtMostTheBoneShift) {
