@@ -31,6 +31,19 @@ jawmesh::InterfaceComplex interfaceComplexOf(const jawmesh::TetMesh& mesh) {
         c.surface.triangles.push_back({tri[0], tri[1], tri[2]});
         c.sides.push_back({other, in});  // outward of `in`: the normal points into `other`
     }
+    // Only the vertices the triangles use: the mesh's interior nodes would otherwise go to TetGen
+    // as input points and be kept (the counts of session 5 were inflated by them).
+    std::vector<std::int32_t> newIndex(c.surface.vertices.size(), -1);
+    std::vector<jawmesh::Vec3> used;
+    for (auto& tri : c.surface.triangles)
+        for (auto& v : tri) {
+            if (newIndex[std::size_t(v)] < 0) {
+                newIndex[std::size_t(v)] = std::int32_t(used.size());
+                used.push_back(c.surface.vertices[std::size_t(v)]);
+            }
+            v = newIndex[std::size_t(v)];
+        }
+    c.surface.vertices = std::move(used);
     c.seeds = jawmesh::seedsInsideShells(c);
     return c;
 }

@@ -60,6 +60,7 @@ const NumberKey kNumberKeys[] = {
     {"surface_min_wedge_deg", [](RunOptions& o) -> double& { return o.simplify.minWedgeDeg; }, 0, 89},
     {"tet_radius_edge", [](RunOptions& o) -> double& { return o.tet.radiusEdgeRatio; }, -kAny, kAny},
     {"tet_min_dihedral_deg", [](RunOptions& o) -> double& { return o.tet.minDihedralDeg; }, 0, 60},
+    {"tet_tetgen_min_dihedral_deg", [](RunOptions& o) -> double& { return o.tet.tetgenMinDihedralDeg; }, -1, 60},
     {"tet_pdl_edge_mm", [](RunOptions& o) -> double& { return o.tet.pdlEdgeMm; }, 0, 1000},
     {"tet_tooth_edge_mm", [](RunOptions& o) -> double& { return o.tet.toothEdgeMm; }, 0, 1000},
     {"tet_bone_edge_mm", [](RunOptions& o) -> double& { return o.tet.boneEdgeMm; }, 0, 1000},
@@ -81,6 +82,13 @@ RunOptions defaultRunOptions() {
     o.tet.pdlEdgeMm = 0.3;
     o.tet.toothEdgeMm = 1.0;
     o.tet.boneEdgeMm = 2.0;
+    // Measured on the shared mandible (docs/BENCHMARKS.md, session 6): PDL interfaces with edges
+    // up to 0.8 mm halve their triangles (213 k -> 107 k, the surface 399 k -> 294 k); TetGen's
+    // radius-edge bound 2 without its own dihedral bound gives 0.99 M tets with 117 under 10 deg
+    // after tet/ImproveSlivers, against 1.30 M and 150 at 1.5/10.
+    o.simplify.pdlMaxEdgeMm = 0.8;
+    o.tet.radiusEdgeRatio = 2.0;
+    o.tet.tetgenMinDihedralDeg = 0.0;
     return o;
 }
 
