@@ -50,13 +50,14 @@ int main(int argc, char** argv) {
     }
     std::map<std::pair<int, int>, int> kinds;  // (interface nodes, interface faces) -> count
     std::map<jawmesh::Label, int> byLabel;
+    const bool list = std::getenv("BENCH_LIST") != nullptr;  // print every remaining bad tet
     std::map<int, int> byFaceAngle;  // smallest interface-face angle, 5-degree bins (-1: no interface face)
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const auto& e = mesh.tets[t];
         const auto sh = jawmesh::tetShape(mesh.nodes[std::size_t(e[0])], mesh.nodes[std::size_t(e[1])], mesh.nodes[std::size_t(e[2])],
                                           mesh.nodes[std::size_t(e[3])]);
         if (sh.minDihedralDeg >= o.targetMinDihedralDeg) continue;
-        if (std::getenv("BENCH_LIST")) {
+        if (list) {
             const auto c = (mesh.nodes[std::size_t(e[0])] + mesh.nodes[std::size_t(e[1])] + mesh.nodes[std::size_t(e[2])] +
                             mesh.nodes[std::size_t(e[3])]) / 4.0;
             std::printf("  bad tet %zu label %d min dihedral %.2f at (%.2f, %.2f, %.2f), %d interface faces\n", t, mesh.labels[t],

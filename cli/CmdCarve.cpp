@@ -26,13 +26,8 @@ struct CarveCliOptions {
     std::string output;
     std::string jaw = "mandible";
     double voxelMm = 0.05;
-    double thicknessMm = 0.2;
-    double ratio = 0.5;
+    CarveOptions carve;  ///< the options bound to flags; profile and axes are filled in runCarve
     std::vector<double> profile;
-    double clearanceVoxels = 1.0;
-    double gapBridgeMm = 0.5;
-    double boneShiftMaxMm = 0.2;
-    double apexTaperMm = 1.0;
     bool json = false;
     bool memoryCheck = true;
 };
@@ -86,13 +81,7 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     const double secondsLoad = secondsSince(start);
     const auto peakLoad = peakResidentMemoryBytes();
 
-    CarveOptions co;
-    co.pdlThicknessMm = opt.thicknessMm;
-    co.pdlRatio = opt.ratio;
-    co.clearanceVoxels = opt.clearanceVoxels;
-    co.gapBridgeMm = opt.gapBridgeMm;
-    co.boneShiftMaxMm = opt.boneShiftMaxMm;
-    co.apexTaperMm = opt.apexTaperMm;
+    CarveOptions co = opt.carve;
     co.axes = surfaces.axes;
     if (!opt.profile.empty()) {
         if (opt.profile.size() != 3) throw Error("--pdl-profile takes three values: cervical,mid,apical (mm)");
@@ -141,17 +130,17 @@ void addCarveCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("-o,--output", opt->output, "Output folder")->required();
     cmd->add_option("--jaw", opt->jaw, "mandible | maxilla (default mandible)")->check(CLI::IsMember({"mandible", "maxilla"}));
     cmd->add_option("--voxel", opt->voxelMm, "Voxel size, mm (default 0.05)")->check(CLI::PositiveNumber);
-    cmd->add_option("--pdl-thickness", opt->thicknessMm, "PDL thickness, mm (default 0.2)")->check(CLI::PositiveNumber);
-    cmd->add_option("--pdl-ratio", opt->ratio, "Share of the thickness taken from the root, 0..1 (default 0.5)")
+    cmd->add_option("--pdl-thickness", opt->carve.pdlThicknessMm, "PDL thickness, mm (default 0.2)")->check(CLI::PositiveNumber);
+    cmd->add_option("--pdl-ratio", opt->carve.pdlRatio, "Share of the thickness taken from the root, 0..1 (default 0.5)")
         ->check(CLI::Range(0.0, 1.0));
     cmd->add_option("--pdl-profile", opt->profile, "Thickness along the root: cervical,mid,apical (mm)")->delimiter(',');
-    cmd->add_option("--clearance", opt->clearanceVoxels, "Gap between different teeth and PDLs, voxels (default 1)")
+    cmd->add_option("--clearance", opt->carve.clearanceVoxels, "Gap between different teeth and PDLs, voxels (default 1)")
         ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--gap-bridge", opt->gapBridgeMm, "Widest root-socket gap bridged, mm (default 0.5)")->check(CLI::NonNegativeNumber);
-    cmd->add_option("--bone-shift", opt->boneShiftMaxMm,
+    cmd->add_option("--gap-bridge", opt->carve.gapBridgeMm, "Widest root-socket gap bridged, mm (default 0.5)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--bone-shift", opt->carve.boneShiftMaxMm,
                     "Farthest a bridged gap moves the bone surface, mm (default 0.2; wider gaps erode the root less)")
         ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--apex-taper", opt->apexTaperMm, "Root erosion falls to half over this length to the apex, mm (default 1; 0 = off)")
+    cmd->add_option("--apex-taper", opt->carve.apexTaperMm, "Root erosion falls to half over this length to the apex, mm (default 1; 0 = off)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");
     cmd->add_flag("!--no-memory-check", opt->memoryCheck,

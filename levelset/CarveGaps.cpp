@@ -63,9 +63,12 @@ struct ToothWork {
     double hCervical = 0, hApex = 0;
 };
 
-double thicknessAt(const ToothWork& t, const Params& P, const Vec3d& world) {
+/// Height of a world point along the tooth's long axis (mm; the crown is up).
+double heightOf(const ToothWork& t, const Vec3d& world) { return (world - t.origin).dot(t.axis); }
+
+/// PDL thickness at height h (heightOf) on the tooth's axis.
+double thicknessAt(const ToothWork& t, const Params& P, double h) {
     if (!P.profile || !t.hasRoot) return P.uniformThickness;
-    const double h = (world - t.origin).dot(t.axis);
     const double s = (t.hCervical - h) / std::max(t.hCervical - t.hApex, 1e-6);
     return pdlThicknessAt(*P.profile, s);
 }
@@ -77,9 +80,9 @@ double thicknessAt(const ToothWork& t, const Params& P, const Vec3d& world) {
 /// 0.15 mm rather than 0.2, which leaves room for the input's overlaps within #5's 0.25 mm.
 constexpr double kApexErosionShare = 0.5;
 
-double erosionShare(const ToothWork& t, const Params& P, const Vec3d& world) {
+double erosionShare(const ToothWork& t, const Params& P, double h) {
     if (!t.hasRoot || P.apexTaper <= 0) return 1.0;
-    const double s = std::clamp(((world - t.origin).dot(t.axis) - t.hApex) / P.apexTaper, 0.0, 1.0);
+    const double s = std::clamp((h - t.hApex) / P.apexTaper, 0.0, 1.0);
     return kApexErosionShare + (1.0 - kApexErosionShare) * s;
 }
 
@@ -110,9 +113,9 @@ Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& X, F
     Local r;
     r.T = T.getValue(c);
     const double b = signedBone(B, X, P, c);
-    const Vec3d world = xf.indexToWorld(c);
-    const double th = thicknessAt(t, P, world);
-    double e = P.ratio * th * erosionShare(t, P, world), w = th - e;
+    const double h = heightOf(t, xf.indexToWorld(c));
+    const double th = thicknessAt(t, P, h);
+    double e = P.ratio * th * erosionShare(t, P, h), w = th - e;
     const double g = r.T + b;  // root-socket gap where the surfaces face each other (file comment)
     double gap = g - P.gapBridge;
     if (gap < 0) {
@@ -211,13 +214,13 @@ void fitRootAxis(ToothWork& t, const Params& P, const FloatGrid& bone, const Car
         double hc = 0;
         std::size_t nc = 0;
         for (std::size_t i = 0; i < surface.size(); ++i)
-            if (contact[i]) hc += (surface[i] - t.origin).dot(t.axis), ++nc;
+            if (contact[i]) hc += heightOf(t, surface[i]), ++nc;
         if (nc && hc / double(nc) > 0) t.axis = -t.axis;
     }
     std::vector<double> hContact;
     t.hApex = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < surface.size(); ++i) {
-        const double h = (surface[i] - t.origin).dot(t.axis);
+        const double h = heightOf(t, surface[i]);
         t.hApex = std::min(t.hApex, h);
         if (contact[i]) hContact.push_back(h);
     }
@@ -262,7 +265,7 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     for (auto leaf = near.cbeginLeaf(); leaf; ++leaf)
         if (const auto* bl = bone.tree().probeConstLeaf(leaf->origin()))
             nearBone.touchLeaf(leaf->origin())->getValueMask() |= bl->getValueMask();
-    // Near the apex the socket side may widen by the whole thickness (erosionShare), past the
+    // Near the apex the socket side widens by what the erosion gives up (erosionShare), past the
     // band: T is needed there whether or not the bone band reaches.
     if (t.hasRoot && P.apexTaper > 0) {
         const auto& xf = T->transform();
@@ -270,7 +273,7 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
         for (auto leaf = near.cbeginLeaf(); leaf; ++leaf) {
             openvdb::MaskTree::LeafNodeType* out = nullptr;
             for (auto v = leaf->cbeginValueOn(); v; ++v)
-                if ((xf.indexToWorld(v.getCoord()) - t.origin).dot(t.axis) < top) {
+                if (heightOf(t, xf.indexToWorld(v.getCoord())) < top) {
                     if (!out) out = nearBone.touchLeaf(leaf->origin());
                     out->setValueOn(v.pos());
                 }
@@ -281,7 +284,6 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     openvdb::tools::changeLevelSetBackground(T->tree(), float(P.far));
     auto ta = T->getAccessor();
     for (auto it = Tx->tree().cbeginValueOn(); it; ++it) ta.setValue(it.getCoord(), *it);
-    t.T = T;
     t.box = T->evalActiveVoxelBoundingBox();
 }
 

@@ -494,16 +494,12 @@ private:
         // On a region-boundary face: where the apex of a regular tet on that face would be, and
         // lower (a tet with one boundary face is best mended by a vertex above that face).
         for (const auto& [k, out] : boundary) {
-            Vec3 c = Vec3::Zero();
-            double edges = 0;
-            for (int v = 0, n = 0; v < 4; ++v)
-                if (v != k) {
-                    c += P(e[std::size_t(v)]) / 3.0;
-                    for (int w = v + 1; w < 4; ++w)
-                        if (w != k) edges += (P(e[std::size_t(v)]) - P(e[std::size_t(w)])).norm() / 3.0, ++n;
-                }
-            const double regularHeight = std::sqrt(2.0 / 3.0) * edges;
-            for (double h : {1.0, 0.7, 0.45}) starts.push_back(c - h * regularHeight * out);
+            const Vec3& a = P(e[std::size_t((k + 1) % 4)]);
+            const Vec3& b = P(e[std::size_t((k + 2) % 4)]);
+            const Vec3& c = P(e[std::size_t((k + 3) % 4)]);
+            const double meanEdge = ((a - b).norm() + (b - c).norm() + (c - a).norm()) / 3.0;
+            const double regularHeight = std::sqrt(2.0 / 3.0) * meanEdge;
+            for (double h : {1.0, 0.7, 0.45}) starts.push_back((a + b + c) / 3.0 - h * regularHeight * out);
         }
         for (std::size_t i = 0; i < boundary.size(); ++i)
             for (std::size_t j = i + 1; j < boundary.size(); ++j) {
