@@ -71,14 +71,15 @@ case "${1:-}" in
     ;;
   mandible-test)
     # The whole pipeline on the shared mandible (15-45 min on 2 cores), then the tests that check a
-    # finished run (tests/cli/slow_run_mandible.cpp, SlowEval, the FE solve); not part of CI's time.
+    # finished run (tests/cli/slow_run_mandible.cpp, SlowEval, the interface surface
+    # against the run's label field); not part of CI's time.
     install_packages
     build
     [ -d ../shared/data/openmandible ] || { echo "no ../shared/data/openmandible" >&2; exit 1; }
     rm -rf build/mandible-run
-    ./build/cli/jawmesh run ../shared/data/openmandible -o build/mandible-run --jaw mandible
+    ./build/cli/jawmesh run ../shared/data/openmandible -o build/mandible-run --jaw mandible --write-levelsets
     JAWMESH_MANDIBLE_RUN="$PWD/build/mandible-run/mandible" \
-      ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun' --output-on-failure
+      ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun|SlowInterfaces' --output-on-failure
     ;;
   slurm-test)
     install_packages "${SLURM_PACKAGES[@]}"

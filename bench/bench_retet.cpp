@@ -6,7 +6,7 @@
 // max (edge mm), O (optimisation level), repair (attempts), improve (0/1).
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
-#include "tet/TetFaceAdjacency.h"
+#include "tet/RegionSurfaces.h"
 #include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
 
@@ -15,40 +15,6 @@
 #include <map>
 #include <string>
 
-namespace {
-
-jawmesh::InterfaceComplex interfaceComplexOf(const jawmesh::TetMesh& mesh) {
-    const jawmesh::TetFaceAdjacency adj = jawmesh::tetFaceAdjacency(mesh);
-    jawmesh::InterfaceComplex c;
-    c.surface.vertices = mesh.nodes;
-    for (std::size_t g = 0; g < adj.groupCount(); ++g) {
-        if (jawmesh::insideOneRegion(adj, mesh, g)) continue;
-        const jawmesh::TetFaceRef& f = adj.faces[std::size_t(adj.groupStart[g])];
-        const jawmesh::Label in = mesh.labels[std::size_t(f.tet)];
-        const jawmesh::Label other =
-            adj.groupSize(g) == 2 ? mesh.labels[std::size_t(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet)] : jawmesh::kOutsideLabel;
-        const auto tri = jawmesh::outwardFace(mesh.tets[std::size_t(f.tet)], f.local);
-        c.surface.triangles.push_back({tri[0], tri[1], tri[2]});
-        c.sides.push_back({other, in});  // outward of `in`: the normal points into `other`
-    }
-    // Only the vertices the triangles use: the mesh's interior nodes would otherwise go to TetGen
-    // as input points and be kept (the counts of session 5 were inflated by them).
-    std::vector<std::int32_t> newIndex(c.surface.vertices.size(), -1);
-    std::vector<jawmesh::Vec3> used;
-    for (auto& tri : c.surface.triangles)
-        for (auto& v : tri) {
-            if (newIndex[std::size_t(v)] < 0) {
-                newIndex[std::size_t(v)] = std::int32_t(used.size());
-                used.push_back(c.surface.vertices[std::size_t(v)]);
-            }
-            v = newIndex[std::size_t(v)];
-        }
-    c.surface.vertices = std::move(used);
-    c.seeds = jawmesh::seedsInsideShells(c);
-    return c;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 2) {
@@ -77,7 +43,10 @@ int main(int argc, char** argv) {
         else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
     }
     const jawmesh::TetMesh in = jawmesh::readGmsh(argv[1]);
-    const jawmesh::InterfaceComplex c = interfaceComplexOf(in);
+    // Only the vertices the interface triangles use: the mesh's interior nodes would otherwise go to
+    // TetGen as input points and be kept (the counts of session 5 were inflated by them).
+    jawmesh::InterfaceComplex c = jawmesh::meshInterfaces(in);
+    c.seeds = jawmesh::seedsInsideShells(c);
     std::printf("input: %zu nodes, %zu tets; complex %zu triangles, %zu seeds\n", in.nodes.size(), in.tets.size(),
                 c.surface.triangles.size(), c.seeds.size());
     jawmesh::TetStats s;

@@ -173,7 +173,9 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     record["surface"] = {{"vertices", complex.surface.vertices.size()}, {"triangles", complex.surface.triangles.size()},
                          {"seeds", complex.seeds.size()}, {"simplify", toJson(simplifyStats)},
                          {"enclosed_outside_pockets_filled",
-                          {{"pockets", extractStats.pocketsFilled}, {"voxels", extractStats.pocketVoxelsFilled}}}};
+                          {{"pockets", extractStats.pocketsFilled}, {"voxels", extractStats.pocketVoxelsFilled}}},
+                         {"region_fragments_absorbed",
+                          {{"fragments", extractStats.fragmentsAbsorbed}, {"voxels", extractStats.fragmentVoxelsAbsorbed}}}};
 
     TetStats tetStats;
     TetMesh mesh = log.run(jaw + ": tetrahedralize", progress, [&] {
@@ -190,6 +192,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     const SliverStats& sl = tetStats.slivers;
     record["tetgen"] = {{"switches", tetStats.switches},
                         {"attempts", tetStats.attempts},
+                        {"failed_attempts", tetStats.failedAttempts},
                         {"seconds", tetStats.seconds},
                         {"sliver_improvement",
                          {{"below_target_before", sl.badBefore},

@@ -2,7 +2,7 @@
 
 #include "filters/LabelEdges.h"
 #include "filters/RegionSeeds.h"
-#include "filters/FillEnclosedOutside.h"
+#include "filters/SmallComponents.h"
 #include "filters/WellComposedLabels.h"
 #include "io/Error.h"
 
@@ -55,26 +55,33 @@ openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOp
     if (!field.labels) throw Error("interface extraction: the label field has no label grid");
     openvdb::Int32Grid::Ptr labels = field.labels->deepCopy();
     const double voxelMm = labels->voxelSize()[0];
-    const auto maxPocketVoxels =
-        std::size_t(std::max(0.0, options.maxEnclosedOutsideMm3) / (voxelMm * voxelMm * voxelMm));
+    const auto voxels = [&](double mm3) { return std::size_t(std::max(0.0, mm3) / (voxelMm * voxelMm * voxelMm)); };
+    const std::size_t maxPocketVoxels = voxels(options.maxEnclosedOutsideMm3);
+    const std::size_t maxFragmentVoxels = voxels(options.maxFragmentMm3);
     ExtractStats local;
     ExtractStats& st = stats ? *stats : local;
-    const auto fill = [&] {
-        const EnclosedOutsideStats f = fillEnclosedOutside(*labels, maxPocketVoxels);
+    const auto absorb = [&] {
+        const SmallComponentStats f = absorbSmallComponents(*labels, maxPocketVoxels, maxFragmentVoxels);
         st.pocketsFilled += f.pockets;
-        st.pocketVoxelsFilled += f.voxels;
-        return f.pockets;
+        st.pocketVoxelsFilled += f.pocketVoxels;
+        st.fragmentsAbsorbed += f.fragments;
+        st.fragmentVoxelsAbsorbed += f.fragmentVoxels;
+        return f.pockets + f.fragments;
     };
-    if (maxPocketVoxels > 0) fill();
+    const bool absorbing = maxPocketVoxels > 0 || maxFragmentVoxels > 0;
     if (options.repairDiagonalContacts) {
-        // The repair raises voxels to higher-priority regions, which can close new pockets.
-        for (int round = 0;; ++round) {
-            const std::size_t relabelled = makeLabelsWellComposed(*labels, field.distances, progress);
-            if (relabelled == 0 || maxPocketVoxels == 0 || round == 3) break;
-            if (fill() == 0) break;
+        // Repair first: a sheet one voxel thin on a diagonal is all fragments until joined. The
+        // repair raises voxels to higher-priority regions, which can close pockets and cut off
+        // fragments, and absorbing can leave diagonal contacts: alternate until stable.
+        makeLabelsWellComposed(*labels, field.distances, progress);
+        for (int round = 0; absorbing && round < 4; ++round) {
+            if (absorb() == 0) break;
+            if (makeLabelsWellComposed(*labels, field.distances, progress) == 0) break;
         }
-    } else if (countCriticalCells(*labels, field.distances) > 0) {
-        throw Error("interface extraction: the label field has diagonal-only contacts");
+    } else {
+        if (absorbing) absorb();
+        if (countCriticalCells(*labels, field.distances) > 0)
+            throw Error("interface extraction: the label field has diagonal-only contacts");
     }
     return labels;
 }

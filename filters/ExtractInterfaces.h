@@ -31,8 +31,11 @@ struct ExtractOptions {
     /// already be well-composed, otherwise Error is thrown.
     bool repairDiagonalContacts = true;
     /// Pockets of outside enclosed by the jaw and smaller than this (mm^3) are filled with the
-    /// region around them first (FillEnclosedOutside.h); 0 = keep them.
+    /// region around them first (SmallComponents.h); 0 = keep them.
     double maxEnclosedOutsideMm3 = 1.0;
+    /// Fragments of a region (components other than its largest) up to this size (mm^3; 0.01 =
+    /// 80 voxels of 0.05 mm) go to the region around them (SmallComponents.h); 0 = keep them.
+    double maxFragmentMm3 = 0.01;
     /// Find one seed per region component (findRegionSeeds). Off when the caller places seeds
     /// itself, as simplification does (filters/ShellSeeds.h): the segmentation is then wasted.
     bool findSeeds = true;
@@ -40,12 +43,14 @@ struct ExtractOptions {
 
 /// What extraction changed in the labels before meshing them (recorded in run.json).
 struct ExtractStats {
-    std::size_t pocketsFilled = 0;       ///< enclosed outside pockets filled (FillEnclosedOutside.h)
+    std::size_t pocketsFilled = 0;       ///< enclosed outside pockets filled (SmallComponents.h)
     std::size_t pocketVoxelsFilled = 0;
+    std::size_t fragmentsAbsorbed = 0;   ///< region fragments given to their surroundings
+    std::size_t fragmentVoxelsAbsorbed = 0;
 };
 
-/// The labels extraction meshes: a copy of field.labels with small enclosed outside pockets filled
-/// (FillEnclosedOutside.h) and diagonal-only contacts repaired (WellComposedLabels.h), as the
+/// The labels extraction meshes: a copy of field.labels with small enclosed outside pockets and
+/// region fragments absorbed (SmallComponents.h) and diagonal-only contacts repaired (WellComposedLabels.h), as the
 /// options ask. Throws Error when field.labels is missing, or has diagonal contacts and the repair
 /// is off.
 openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOptions& options = {},

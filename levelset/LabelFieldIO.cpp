@@ -6,6 +6,7 @@
 #include <openvdb/io/File.h>
 
 #include <filesystem>
+#include <set>
 
 namespace jawmesh {
 namespace {
@@ -28,6 +29,36 @@ openvdb::GridBase::Ptr readOnlyGrid(const std::string& path) {
         return grids->front();
     } catch (const openvdb::Exception& e) {
         throw Error(path, std::string("cannot read OpenVDB file: ") + e.what());
+    }
+}
+
+/// An edited folder must keep labels and distance grids together: a region with voxels and no
+/// distance grid would lose its sub-voxel placement, a tooth or bone grid without voxels would be a
+/// region the pipeline expects and cannot find. A PDL grid without voxels is dropped: carving
+/// writes one for a tooth that has no bone contact.
+void requireConsistent(LabelField& field, const std::string& dir) {
+    std::set<Label> present;
+    Label last = kOutsideLabel;
+    for (auto it = field.labels->tree().cbeginValueAll(); it; ++it)
+        if (*it != last) {
+            last = *it;
+            present.insert(last);
+        }
+    present.erase(kOutsideLabel);
+    for (Label L : present)
+        if (!field.distances.count(L))
+            throw Error(dir + "/" + labelName(L) + ".vdb",
+                        "missing: labels.vdb has voxels of " + labelName(L) + " but no distance grid of it is in the folder");
+    for (auto it = field.distances.begin(); it != field.distances.end();) {
+        const Label L = it->first;
+        if (present.count(L)) {
+            ++it;
+        } else if (labelKind(L) == LabelKind::Pdl) {
+            it = field.distances.erase(it);
+        } else {
+            throw Error(dir + "/" + labelName(L) + ".vdb",
+                        "labels.vdb has no voxel of " + labelName(L) + ": delete this grid, or restore its voxels");
+        }
     }
 }
 
@@ -74,6 +105,7 @@ LabelField readLabelField(const std::string& dir) {
         labelKind(label->value());  // throws for unknown labels
         field.distances[label->value()] = grid;
     }
+    requireConsistent(field, dir);
     return field;
 }
 

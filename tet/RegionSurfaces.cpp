@@ -63,6 +63,32 @@ std::map<Label, SurfaceMesh> regionSurfaces(const TetMesh& mesh) {
     return out;
 }
 
+InterfaceComplex meshInterfaces(const TetMesh& mesh) {
+    const TetFaceAdjacency adj = tetFaceAdjacency(mesh);
+    InterfaceComplex c;
+    std::vector<std::int32_t> newIndex(mesh.nodes.size(), -1);
+    for (std::size_t g = 0; g < adj.groupCount(); ++g) {
+        if (insideOneRegion(adj, mesh, g)) continue;
+        const TetFaceRef& f = adj.faces[std::size_t(adj.groupStart[g])];
+        const Label in = mesh.labels[std::size_t(f.tet)];
+        const Label other = adj.groupSize(g) == 2 ? mesh.labels[std::size_t(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet)]
+                                                  : kOutsideLabel;
+        auto tri = outwardFace(mesh.tets[std::size_t(f.tet)], f.local);  // normal into `other`
+        if (other > in) std::swap(tri[1], tri[2]);                        // normal into the smaller label
+        c.surface.triangles.push_back({tri[0], tri[1], tri[2]});
+        c.sides.push_back({std::min(in, other), std::max(in, other)});
+        for (auto v : tri) newIndex[std::size_t(v)] = 0;
+    }
+    for (std::size_t i = 0; i < mesh.nodes.size(); ++i)
+        if (newIndex[i] == 0) {
+            newIndex[i] = std::int32_t(c.surface.vertices.size());
+            c.surface.vertices.push_back(mesh.nodes[i]);
+        }
+    for (Tri& t : c.surface.triangles)
+        for (auto& v : t) v = newIndex[std::size_t(v)];
+    return c;
+}
+
 std::string regionSurfaceFileName(Label label) {
     switch (labelKind(label)) {
     case LabelKind::Bone: return "bone.stl";

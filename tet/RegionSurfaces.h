@@ -2,6 +2,7 @@
 // for each label, the faces of its tets whose other side is another label or the outside.
 #pragma once
 
+#include "io/InterfaceComplex.h"
 #include "io/SurfaceMesh.h"
 #include "io/TetMesh.h"
 
@@ -28,6 +29,12 @@ std::map<Label, RegionBoundary> regionBoundaries(const TetMesh& mesh);
 /// compacted in increasing node order. An interface face appears in both regions' surfaces with
 /// opposite orientations. Cost: one face adjacency (O(T log T)) plus O(faces).
 std::map<Label, SurfaceMesh> regionSurfaces(const TetMesh& mesh);
+
+/// The interface complex a labeled tet mesh carries: every face between two labels or on the
+/// outside, with sides as in filters/ExtractInterfaces.h (sides[t][0] the smaller label, the normal
+/// pointing into it), vertices compacted in increasing node order, no seeds. For a mesh TetGen made
+/// with -Y these are the interface triangles it was given. Cost: one face adjacency.
+InterfaceComplex meshInterfaces(const TetMesh& mesh);
 
 /// File name of a region's surface in surface_meshes/: "bone.stl", "tooth_24.stl", "pdl_24.stl".
 /// Throws Error for the outside label or unknown labels.

@@ -329,9 +329,18 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
     for (std::size_t i = 0; i < runs; ++i) {
         progress.checkCancelled();
         stage.update(static_cast<double>(i) / static_cast<double>(runs));
-        RawMesh raw = runTetgen(plc, options, ladder[i]);
+        RawMesh raw;
         ++st.attempts;
-        if (options.preserveBoundary) labelFromSides(plc, raw.facets, raw.mesh);
+        try {
+            raw = runTetgen(plc, options, ladder[i]);
+            if (options.preserveBoundary) labelFromSides(plc, raw.facets, raw.mesh);
+        } catch (const Error& e) {
+            // A repair run exists only to improve angles: when it fails (TetGen's stronger
+            // optimisation has lost a facet on a valid surface), the mesh already made stands.
+            if (!haveBest) throw;
+            st.failedAttempts.push_back(ladder[i].switches + ": " + e.what());
+            continue;
+        }
         const std::size_t removed = keepLabeled(raw.mesh);
         if (raw.mesh.tets.empty()) throw Error(kWhat, "no tetrahedron received a label: are the seeds inside their regions?");
         SliverStats slivers;

@@ -7,6 +7,7 @@
 #include "tet/ImproveSlivers.h"
 
 #include <string>
+#include <vector>
 
 namespace jawmesh {
 
@@ -51,6 +52,7 @@ struct TetStats {
     double maxRadiusEdge = 0;
     std::size_t belowMinDihedral = 0;   ///< tets still below options.minDihedralDeg (0 when met)
     SliverStats slivers;                ///< what the sliver improvement did on the kept run
+    std::vector<std::string> failedAttempts; ///< repair runs that failed (switches: reason); the kept run stands
 };
 
 /// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.

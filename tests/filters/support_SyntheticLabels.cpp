@@ -149,6 +149,36 @@ std::string checkRegionBoundary(const InterfaceComplex& complex, Label label) {
     return {};
 }
 
+std::pair<long, int> eulerAndComponents(const SurfaceMesh& m) {
+    std::vector<std::uint64_t> edges;
+    edges.reserve(3 * m.triangles.size());
+    std::vector<std::int32_t> parent(m.vertices.size(), -1);  // -1: unused
+    const auto find = [&](std::int32_t x) {
+        while (parent[std::size_t(x)] != x) x = parent[std::size_t(x)] = parent[std::size_t(parent[std::size_t(x)])];
+        return x;
+    };
+    for (const Tri& t : m.triangles)
+        for (auto v : t)
+            if (parent[std::size_t(v)] < 0) parent[std::size_t(v)] = v;
+    for (const Tri& t : m.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const std::uint64_t a = std::uint32_t(std::min(t[k], t[(k + 1) % 3])), b = std::uint32_t(std::max(t[k], t[(k + 1) % 3]));
+            edges.push_back(a << 32 | b);
+            const auto ra = find(t[k]), rb = find(t[(k + 1) % 3]);
+            if (ra != rb) parent[std::size_t(std::max(ra, rb))] = std::min(ra, rb);
+        }
+    std::sort(edges.begin(), edges.end());
+    const long nEdges = long(std::unique(edges.begin(), edges.end()) - edges.begin());
+    long nVerts = 0;
+    int components = 0;
+    for (std::size_t v = 0; v < parent.size(); ++v) {
+        if (parent[v] < 0) continue;
+        ++nVerts;
+        components += find(std::int32_t(v)) == std::int32_t(v);
+    }
+    return {nVerts - nEdges + long(m.triangles.size()), components};
+}
+
 double windingNumber(const SurfaceMesh& mesh, const Vec3& p) {
     double sum = 0.0;
     for (const Tri& t : mesh.triangles) {

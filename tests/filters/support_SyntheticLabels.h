@@ -51,6 +51,10 @@ Label voxelLabelAt(const LabelField& field, const Vec3& p);
 /// (vertex-manifold). Returns a message describing the first failure, empty when fine.
 std::string checkRegionBoundary(const InterfaceComplex& complex, Label label);
 
+/// Euler characteristic (V - E + F over the vertices and edges the triangles use) and number of
+/// connected components of a surface. Cost: O(T log T) (millions of triangles in seconds).
+std::pair<long, int> eulerAndComponents(const SurfaceMesh& m);
+
 /// Generalized winding number of the closed surface at p.
 double windingNumber(const SurfaceMesh& mesh, const Vec3& p);
 

@@ -20,24 +20,6 @@ namespace {
 
 using test::regionLabels;
 
-/// Euler characteristic and number of connected components of a closed surface.
-std::pair<long, int> eulerAndComponents(const SurfaceMesh& m) {
-    std::set<std::pair<int, int>> edges;
-    std::set<int> verts;
-    std::vector<int> parent(m.vertices.size());
-    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = int(i);
-    const std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
-    for (const Tri& t : m.triangles)
-        for (int k = 0; k < 3; ++k) {
-            verts.insert(t[k]);
-            edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
-            parent[find(t[k])] = find(t[(k + 1) % 3]);
-        }
-    std::set<int> roots;
-    for (int v : verts) roots.insert(find(v));
-    return {long(verts.size()) - long(edges.size()) + long(m.triangles.size()), int(roots.size())};
-}
-
 struct Simplified {
     InterfaceComplex fine, coarse;
     SimplifyStats stats;
@@ -94,8 +76,8 @@ TEST(SimplifyInterfaces, FewerTrianglesSameRegionsClosedAndIntersectionFree) {
 TEST(SimplifyInterfaces, TopologyOfEveryRegionIsKept) {
     const auto& s = phantom();
     for (Label L : regionLabels(s.fine)) {
-        const auto before = eulerAndComponents(regionBoundary(s.fine, L));
-        const auto after = eulerAndComponents(regionBoundary(s.coarse, L));
+        const auto before = test::eulerAndComponents(regionBoundary(s.fine, L));
+        const auto after = test::eulerAndComponents(regionBoundary(s.coarse, L));
         EXPECT_EQ(after, before) << labelName(L) << " (Euler characteristic, components)";
     }
     // seeds (placed anew on the output) inside their own region's boundary and outside every
@@ -236,7 +218,7 @@ TEST(SimplifyInterfaces, SmallBlocksStayValidAndIndependentOfThreads) {
     EXPECT_LT(one.surface.triangles.size(), s.fine.surface.triangles.size() / 3);
     for (Label L : regionLabels(one)) EXPECT_EQ(test::checkRegionBoundary(one, L), "") << labelName(L);
     for (Label L : regionLabels(s.fine))
-        EXPECT_EQ(eulerAndComponents(regionBoundary(one, L)), eulerAndComponents(regionBoundary(s.fine, L))) << labelName(L);
+        EXPECT_EQ(test::eulerAndComponents(regionBoundary(one, L)), test::eulerAndComponents(regionBoundary(s.fine, L))) << labelName(L);
     EXPECT_TRUE(findSelfIntersections(one.surface).pairs.empty());
 }
 

@@ -345,11 +345,49 @@ TEST(Carve, LabelFieldRoundTripsThroughVdb) {
     const auto back = readLabelField(dir.string());
     EXPECT_EQ(back.jaw, f.jaw);
     EXPECT_DOUBLE_EQ(back.voxelSizeMm, f.voxelSizeMm);
-    ASSERT_EQ(back.distances.size(), f.distances.size());
+    // tooth 30 floats (no bone contact): its PDL grid has no voxel and is dropped on reading
+    ASSERT_EQ(back.distances.size(), f.distances.size() - 1);
+    EXPECT_TRUE(f.distances.count(pdlLabel(30)));
+    EXPECT_FALSE(back.distances.count(pdlLabel(30)));
     EXPECT_EQ(back.labels->activeVoxelCount(), f.labels->activeVoxelCount());
     ToothCarveSummary a, b;
     measureTooth(f, 26, 0.3, a);
     measureTooth(back, 26, 0.3, b);
     EXPECT_DOUBLE_EQ(a.thickness.mean, b.thickness.mean);
     EXPECT_THROW(readLabelField((dir / "missing").string()), Error);
+}
+
+TEST(Carve, EditedFolderWithLabelsAndGridsOutOfStepIsRefusedNamingTheGrid) {
+    const auto& f = carvedDefault().field;
+    const auto dir = test::scratchDir("carve-io-edit");
+    const auto refusal = [&] {
+        try {
+            readLabelField(dir.string());
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    // a distance grid deleted, its voxels left
+    writeLabelField(f, dir.string());
+    std::filesystem::remove(dir / "pdl_26.vdb");
+    EXPECT_NE(refusal().find("pdl_26.vdb"), std::string::npos) << refusal();
+    // tooth 26 and its PDL relabelled, their grids left
+    LabelField edited = f;
+    edited.labels = f.labels->deepCopy();
+    for (auto it = edited.labels->tree().beginValueAll(); it; ++it)
+        if (*it == pdlLabel(26) || *it == toothLabel(26)) it.setValue(kOutsideLabel);
+    std::filesystem::remove_all(dir);
+    writeLabelField(edited, dir.string());
+    const std::string why = refusal();
+    EXPECT_NE(why.find("tooth_26.vdb"), std::string::npos) << why;
+    EXPECT_NE(why.find("no voxel"), std::string::npos) << why;
+    // the tooth's grid gone too: accepted; a PDL grid without voxels (as carving writes for a tooth
+    // without bone contact) is dropped
+    std::filesystem::remove(dir / "tooth_26.vdb");
+    EXPECT_EQ(refusal(), "");
+    const LabelField back = readLabelField(dir.string());
+    EXPECT_FALSE(back.distances.count(toothLabel(26)));
+    EXPECT_FALSE(back.distances.count(pdlLabel(26)));
+    EXPECT_TRUE(back.distances.count(toothLabel(24)));
 }

@@ -1,6 +1,7 @@
 // regionSurfaces(): closed, outward, volume-consistent boundaries of each region; files written.
 #include "io/Error.h"
 #include "io/MeshIO.h"
+#include "io/PolyWriter.h"
 #include "support/TestData.h"
 #include "tet/GridTetMesh.h"
 #include "tet/RegionSurfaces.h"
@@ -56,4 +57,28 @@ TEST(RegionSurfaces, WritesOneStlPerRegion) {
     for (const char* name : {"bone.stl", "tooth_24.stl", "tooth_25.stl", "pdl_25.stl"})
         EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
     EXPECT_THROW(regionSurfaceFileName(kOutsideLabel), Error);
+}
+
+TEST(RegionSurfaces, MeshInterfacesGiveTheComplexBackOrientedIntoTheSmallerLabel) {
+    const TetMesh m = twoToothGrid();
+    const InterfaceComplex c = meshInterfaces(m);
+    const auto surfaces = regionSurfaces(m);
+    std::size_t faces = 0;
+    for (const auto& [label, s] : surfaces) faces += s.triangles.size();
+    std::size_t interior = 0;  // interface faces appear in two region surfaces, the outer ones in one
+    for (const auto& side : c.sides) {
+        EXPECT_LT(side[0], side[1]);
+        interior += side[0] != kOutsideLabel;
+    }
+    EXPECT_EQ(c.surface.triangles.size() + interior, faces);
+    EXPECT_TRUE(c.seeds.empty());
+    // every region's boundary taken from the complex encloses the region's volume (orientation)
+    for (const auto& [label, s] : surfaces)
+        EXPECT_NEAR(signedVolume(regionBoundary(c, label)), signedVolume(s), 1e-9) << labelName(label);
+    // only interface nodes are kept
+    std::vector<char> used(c.surface.vertices.size(), 0);
+    for (const Tri& t : c.surface.triangles)
+        for (auto v : t) used[std::size_t(v)] = 1;
+    EXPECT_EQ(std::count(used.begin(), used.end(), 1), std::ptrdiff_t(c.surface.vertices.size()));
+    EXPECT_LT(c.surface.vertices.size(), m.nodes.size());
 }

@@ -1,0 +1,116 @@
+#include "filters/SmallComponents.h"
+
+#include <map>
+#include <set>
+#include <vector>
+
+namespace jawmesh {
+namespace {
+
+using openvdb::Coord;
+
+const Coord kFace[6] = {Coord(1, 0, 0), Coord(-1, 0, 0), Coord(0, 1, 0), Coord(0, -1, 0), Coord(0, 0, 1), Coord(0, 0, -1)};
+
+struct SmallComponent {
+    Label label;
+    Label fill;
+    std::vector<Coord> voxels;
+};
+
+}  // namespace
+
+SmallComponentStats absorbSmallComponents(openvdb::Int32Grid& labels, std::size_t maxOutsideVoxels,
+                                          std::size_t maxRegionVoxels) {
+    // Voxels next to another label: every small component has one. Sorted, so components are
+    // found in the same order whatever the tree's layout.
+    std::vector<Coord> starts;
+    {
+        auto acc = labels.getConstAccessor();
+        for (auto leaf = labels.tree().cbeginLeaf(); leaf; ++leaf)
+            for (auto it = leaf->cbeginValueAll(); it; ++it) {
+                const Coord c = it.getCoord();
+                for (const Coord& d : kFace)
+                    if (acc.getValue(c + d) != *it) {
+                        starts.push_back(c);
+                        starts.push_back(c + d);  // may lie outside every leaf (background)
+                    }
+            }
+    }
+    std::sort(starts.begin(), starts.end());
+    starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
+
+    // 1 = in a component larger than its limit, 2 = in a small one, 3 = in the current flood.
+    openvdb::Int32Grid seen(0);
+    auto seenAcc = seen.getAccessor();
+    auto acc = labels.getConstAccessor();
+    std::vector<SmallComponent> small;
+    std::set<Label> hasLarge;
+    std::vector<Coord> component;
+    for (const Coord& start : starts) {
+        if (seenAcc.getValue(start) != 0) continue;
+        const Label L = acc.getValue(start);
+        const std::size_t limit = L == kOutsideLabel ? maxOutsideVoxels : maxRegionVoxels;
+        component.assign(1, start);
+        seenAcc.setValue(start, 3);
+        bool large = limit == 0;
+        for (std::size_t i = 0; i < component.size() && !large; ++i)
+            for (const Coord& d : kFace) {
+                const Coord n = component[i] + d;
+                if (acc.getValue(n) != L) continue;
+                const int s = seenAcc.getValue(n);
+                if (s == 1 || (s == 0 && component.size() >= limit)) {
+                    large = true;
+                    break;
+                }
+                if (s != 0) continue;
+                seenAcc.setValue(n, 3);
+                component.push_back(n);
+            }
+        for (const Coord& c : component) seenAcc.setValue(c, large ? 1 : 2);
+        if (large) {
+            hasLarge.insert(L);
+            continue;
+        }
+        std::map<Label, std::size_t> around;
+        for (const Coord& c : component)
+            for (const Coord& d : kFace) {
+                const Label n = acc.getValue(c + d);
+                if (n != L) ++around[n];
+            }
+        Label fill = L;
+        std::size_t most = 0;
+        for (const auto& [n, count] : around)  // ascending labels: ties keep the smaller
+            if (n != kOutsideLabel || L != kOutsideLabel)
+                if (count > most) {
+                    most = count;
+                    fill = n;
+                }
+        if (fill != L) small.push_back({L, fill, component});
+    }
+    // A region made only of small components keeps its largest (the first found among equals).
+    std::map<Label, std::size_t> keep;
+    for (std::size_t i = 0; i < small.size(); ++i) {
+        const Label L = small[i].label;
+        if (L == kOutsideLabel || hasLarge.count(L)) continue;
+        const auto it = keep.find(L);
+        if (it == keep.end() || small[i].voxels.size() > small[it->second].voxels.size()) keep[L] = i;
+    }
+    SmallComponentStats stats;
+    auto write = labels.getAccessor();
+    for (std::size_t i = 0; i < small.size(); ++i) {
+        const SmallComponent& s = small[i];
+        const auto k = keep.find(s.label);
+        if (k != keep.end() && k->second == i) continue;
+        for (const Coord& c : s.voxels) write.setValueOn(c, s.fill);
+        if (s.label == kOutsideLabel) {
+            ++stats.pockets;
+            stats.pocketVoxels += s.voxels.size();
+        } else {
+            ++stats.fragments;
+            stats.fragmentVoxels += s.voxels.size();
+        }
+    }
+    return stats;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,186 @@
+// Issue #4 on the shared mandible: the interface surface of a finished `jawmesh run` (read back
+// from its tet mesh: with TetGen's -Y its interface faces are the simplified surface TetGen was
+// given) against the raw extraction of the run's own label field (<run>/levelsets, written with
+// --write-levelsets): no self-intersections (exact predicates), every region closed, every region's
+// topology (Euler characteristic, components) as in the label field, each interface within its
+// error bound of the raw extraction in both directions, <= 350 k triangles, >= 3 across the cap.
+// Run by `bash quickstart.sh mandible-test` (JAWMESH_MANDIBLE_RUN=<out>/mandible); skipped otherwise.
+#include "cli/RunOptions.h"
+#include "filters/ExtractInterfaces.h"
+#include "filters/NearTeeth.h"
+#include "filters/SelfIntersections.h"
+#include "filters/TriangleBvh.h"
+#include "io/GmshReader.h"
+#include "io/PolyWriter.h"
+#include "levelset/LabelFieldIO.h"
+#include "support_SyntheticLabels.h"
+#include "tet/RegionSurfaces.h"
+
+#include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+namespace jawmesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+using Pair = std::pair<Label, Label>;
+
+std::map<Pair, std::vector<Tri>> trianglesByPair(const InterfaceComplex& c) {
+    std::map<Pair, std::vector<Tri>> by;
+    for (std::size_t t = 0; t < c.sides.size(); ++t) by[{c.sides[t][0], c.sides[t][1]}].push_back(c.surface.triangles[t]);
+    return by;
+}
+
+/// The error bound of interface (a, b) at a point near the teeth or not (SimplifyOptions).
+double boundFor(const Pair& p, bool nearTeeth, const SimplifyOptions& o) {
+    const std::string kind = interfaceKind(p.first, p.second);
+    if (kind == "tooth/pdl" || kind == "pdl/bone") return o.pdlErrorMm;
+    if (kind != "bone/outside") return o.toothErrorMm;
+    return nearTeeth ? o.boneErrorMm : std::max(o.boneErrorMm, o.boneFarErrorMm);
+}
+
+struct Worst {
+    double excessMm = -1;  ///< largest distance minus its bound
+    double distanceMm = 0;
+    Vec3 at = Vec3::Zero();
+};
+
+/// Largest excess over the bound of the distance from every vertex of `from` (those used by the
+/// triangles of pair p) to the pair's triangles in `to`.
+Worst worstVertex(const InterfaceComplex& from, const std::vector<Tri>& fromTris, const std::vector<char>& near,
+                  const std::vector<Vec3>& toVertices, const std::vector<Tri>& toTris, const Pair& p,
+                  const SimplifyOptions& o) {
+    const TriangleBvh bvh = buildTriangleBvh(toVertices, toTris);
+    std::vector<std::int32_t> verts;
+    for (const Tri& t : fromTris) verts.insert(verts.end(), t.begin(), t.end());
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    std::vector<double> d(verts.size());
+    tbb::parallel_for(std::size_t(0), verts.size(), [&](std::size_t i) {
+        d[i] = std::sqrt(closestTriangle(bvh, from.surface.vertices[std::size_t(verts[i])]).squaredDistanceMm2);
+    });
+    Worst w;
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+        const double excess = d[i] - boundFor(p, near[std::size_t(verts[i])] != 0, o);
+        if (excess > w.excessMm) w = {excess, d[i], from.surface.vertices[std::size_t(verts[i])]};
+    }
+    return w;
+}
+
+TEST(SlowInterfaces, MandibleSurfaceIsIntersectionFreeClosedOfTheLabelTopologyAndWithinTheBound) {
+    const char* run = std::getenv("JAWMESH_MANDIBLE_RUN");
+    if (!run) GTEST_SKIP() << "set JAWMESH_MANDIBLE_RUN=<out>/mandible (a run of the shared mandible with --write-levelsets)";
+    const fs::path dir(run);
+    if (!fs::exists(dir / "levelsets" / "labels.vdb"))
+        GTEST_SKIP() << dir.string() << " has no levelsets/: run it with --write-levelsets";
+
+    RunOptions options = defaultRunOptions();
+    {
+        std::ifstream in(dir / "run.json");
+        const auto record = nlohmann::json::parse(in);
+        applyRunConfigText(record.at("options").dump(), (dir / "run.json").string(), options);
+    }
+    const SimplifyOptions& so = options.simplify;
+
+    const InterfaceComplex coarse = meshInterfaces(readGmsh((dir / "volumetric_meshes" / "mandible.msh").string()));
+    InterfaceComplex raw;
+    {
+        const LabelField field = readLabelField((dir / "levelsets").string());
+        ExtractOptions eo = options.extract;
+        eo.findSeeds = false;
+        raw = extractInterfaces(field, eo);
+    }
+    std::printf("raw extraction %zu triangles, meshed surface %zu triangles\n", raw.surface.triangles.size(),
+                coarse.surface.triangles.size());
+
+    // size, per region kind
+    std::map<std::string, std::size_t> perKind;
+    for (const auto& s : coarse.sides) ++perKind[interfaceKind(s[0], s[1])];
+    for (const auto& [k, n] : perKind) std::printf("  %s: %zu triangles\n", k.c_str(), n);
+    EXPECT_LE(coarse.surface.triangles.size(), 350000u);
+
+    // self-intersections (exact orientation predicates)
+    const SelfIntersectionReport si = findSelfIntersections(coarse.surface);
+    EXPECT_TRUE(si.pairs.empty()) << si.pairs.size() << " intersecting triangle pairs";
+    EXPECT_TRUE(si.degenerate.empty()) << si.degenerate.size() << " degenerate triangles";
+
+    // every region closed and of the label field's topology; all 14 teeth and PDLs
+    const std::set<Label> regions = test::regionLabels(coarse);
+    EXPECT_EQ(regions, test::regionLabels(raw));
+    std::size_t teeth = 0, pdls = 0;
+    for (Label L : regions) {
+        teeth += labelKind(L) == LabelKind::Tooth;
+        pdls += labelKind(L) == LabelKind::Pdl;
+        EXPECT_EQ(test::checkRegionBoundary(coarse, L), "") << labelName(L);
+        const auto before = test::eulerAndComponents(regionBoundary(raw, L));
+        const auto after = test::eulerAndComponents(regionBoundary(coarse, L));
+        std::printf("  %s: Euler characteristic %ld, %d components (label field: %ld, %d)\n", labelName(L).c_str(),
+                    after.first, after.second, before.first, before.second);
+        EXPECT_EQ(after, before) << labelName(L) << " (Euler characteristic, components)";
+    }
+    EXPECT_EQ(teeth, 14u);
+    EXPECT_EQ(pdls, 14u);
+
+    // each interface within its bound of the raw one, both ways (vertices; the raw triangles are
+    // voxel-sized, the meshed ones are checked at their vertices and centroids)
+    const std::vector<char> rawNear = verticesNearTeeth(raw, so.boneNearTeethMm);
+    const std::vector<char> coarseNear = verticesNearTeeth(coarse, so.boneNearTeethMm);
+    const auto rawBy = trianglesByPair(raw), coarseBy = trianglesByPair(coarse);
+    ASSERT_EQ(rawBy.size(), coarseBy.size());
+    double worstRaw = 0, worstCoarse = 0;
+    for (const auto& [p, rawTris] : rawBy) {
+        ASSERT_TRUE(coarseBy.count(p)) << labelName(p.first) << "|" << labelName(p.second);
+        const auto& coarseTris = coarseBy.at(p);
+        const Worst a = worstVertex(raw, rawTris, rawNear, coarse.surface.vertices, coarseTris, p, so);
+        // the meshed side: its vertices and the centroids of its triangles, as extra vertices
+        InterfaceComplex probe;
+        std::vector<char> probeNear;
+        std::vector<Tri> probeTris;
+        for (const Tri& t : coarseTris) {
+            const Vec3 c = (coarse.surface.vertices[std::size_t(t[0])] + coarse.surface.vertices[std::size_t(t[1])] +
+                            coarse.surface.vertices[std::size_t(t[2])]) / 3.0;
+            const std::int32_t base = std::int32_t(probe.surface.vertices.size());
+            bool near = false;
+            for (auto v : t) {
+                probe.surface.vertices.push_back(coarse.surface.vertices[std::size_t(v)]);
+                near = near || coarseNear[std::size_t(v)] != 0;
+                probeNear.push_back(coarseNear[std::size_t(v)]);
+            }
+            probe.surface.vertices.push_back(c);
+            probeNear.push_back(near);
+            probeTris.push_back({base, base + 1, base + 3});
+            probeTris.push_back({base + 1, base + 2, base + 3});
+        }
+        const Worst b = worstVertex(probe, probeTris, probeNear, raw.surface.vertices, rawTris, p, so);
+        worstRaw = std::max(worstRaw, a.distanceMm);
+        worstCoarse = std::max(worstCoarse, b.distanceMm);
+        const std::string name = labelName(p.first) + "|" + labelName(p.second);
+        EXPECT_LE(a.excessMm, 1e-9) << name << ": raw point " << a.distanceMm << " mm from the meshed surface at ("
+                                    << a.at.x() << ", " << a.at.y() << ", " << a.at.z() << ")";
+        EXPECT_LE(b.excessMm, 1e-9) << name << ": meshed point " << b.distanceMm << " mm from the raw surface at ("
+                                    << b.at.x() << ", " << b.at.y() << ", " << b.at.z() << ")";
+    }
+    std::printf("largest distance raw -> meshed %.4f mm, meshed -> raw %.4f mm\n", worstRaw, worstCoarse);
+
+    // the cap: at least 3 triangles across its 0.2 mm
+    double longestCapEdge = 0;
+    for (std::size_t t = 0; t < coarse.sides.size(); ++t) {
+        if (interfaceKind(coarse.sides[t][0], coarse.sides[t][1]) != "pdl/outside") continue;
+        const Tri& f = coarse.surface.triangles[t];
+        for (int k = 0; k < 3; ++k)
+            longestCapEdge = std::max(longestCapEdge, (coarse.surface.vertices[std::size_t(f[k])] -
+                                                       coarse.surface.vertices[std::size_t(f[(k + 1) % 3])]).norm());
+    }
+    std::printf("longest cap edge %.4f mm\n", longestCapEdge);
+    EXPECT_LE(longestCapEdge, 0.2 / 3 + 1e-9);
+}
+
+}  // namespace
+}  // namespace jawmesh
