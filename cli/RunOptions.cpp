@@ -79,15 +79,16 @@ void checkRanges(const std::string& name, RunOptions& o) {
 
 RunOptions defaultRunOptions() {
     RunOptions o;
-    o.tet.pdlEdgeMm = 0.3;
-    o.tet.toothEdgeMm = 1.0;
-    o.tet.boneEdgeMm = 2.0;
-    // Measured on the shared mandible (docs/BENCHMARKS.md, session 6): PDL interfaces with edges
-    // up to 0.8 mm halve their triangles (213 k -> 107 k, the surface 399 k -> 294 k); TetGen's
-    // radius-edge bound 2 without its own dihedral bound gives 0.99 M tets with 117 under 10 deg
-    // after tet/ImproveSlivers, against 1.30 M and 150 at 1.5/10.
+    // Measured on the shared mandible (docs/BENCHMARKS.md, sessions 6 and 7): PDL interfaces with
+    // edges up to 0.8 mm halve their triangles (213 k -> 107 k, the surface 399 k -> 294 k). On that
+    // surface TetGen's radius-edge bound sets the count: 1.30 M tets at 1.5/10 with sizes
+    // 2 / 1 / 0.3 mm, 0.99 M at 2/0, 0.75 M at 3/0 with sizes 4 / 2 / 0.6 mm (#5 allows 0.8 M); the
+    // tets left under 10 deg after tet/ImproveSlivers (100-260) do not follow the bound.
     o.simplify.pdlMaxEdgeMm = 0.8;
-    o.tet.radiusEdgeRatio = 2.0;
+    o.tet.boneEdgeMm = 4.0;
+    o.tet.toothEdgeMm = 2.0;
+    o.tet.pdlEdgeMm = 0.6;
+    o.tet.radiusEdgeRatio = 3.0;
     o.tet.tetgenMinDihedralDeg = 0.0;
     return o;
 }
