@@ -49,10 +49,10 @@ struct ExtractStats {
     std::size_t fragmentVoxelsAbsorbed = 0;
 };
 
-/// The labels extraction meshes: a copy of field.labels with small enclosed outside pockets and
-/// region fragments absorbed (SmallComponents.h) and diagonal-only contacts repaired (WellComposedLabels.h), as the
-/// options ask. Throws Error when field.labels is missing, or has diagonal contacts and the repair
-/// is off.
+/// The labels extraction meshes: a copy of field.labels with diagonal-only contacts repaired
+/// (WellComposedLabels.h) and small enclosed outside pockets and region fragments absorbed
+/// (SmallComponents.h), as the options ask. Throws Error when field.labels is missing, or has
+/// diagonal contacts and the repair is off.
 openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOptions& options = {},
                                         Progress& progress = noProgress(), ExtractStats* stats = nullptr);
 

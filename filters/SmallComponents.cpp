@@ -80,11 +80,10 @@ SmallComponentStats absorbSmallComponents(openvdb::Int32Grid& labels, std::size_
         Label fill = L;
         std::size_t most = 0;
         for (const auto& [n, count] : around)  // ascending labels: ties keep the smaller
-            if (n != kOutsideLabel || L != kOutsideLabel)
-                if (count > most) {
-                    most = count;
-                    fill = n;
-                }
+            if (count > most) {
+                most = count;
+                fill = n;
+            }
         if (fill != L) small.push_back({L, fill, component});
     }
     // A region made only of small components keeps its largest (the first found among equals).

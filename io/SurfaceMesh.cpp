@@ -1,5 +1,7 @@
 #include "io/SurfaceMesh.h"
 
+#include <algorithm>
+
 namespace jawmesh {
 
 BBox boundingBox(const SurfaceMesh& mesh) {
@@ -18,6 +20,21 @@ double signedVolume(const SurfaceMesh& mesh) {
         sixVolume += a.dot(b.cross(c));
     }
     return sixVolume / 6.0;
+}
+
+SurfaceMesh compactSurface(const std::vector<Vec3>& vertices, std::vector<Tri> triangles) {
+    std::vector<std::int32_t> used;
+    used.reserve(3 * triangles.size());
+    for (const Tri& t : triangles) used.insert(used.end(), t.begin(), t.end());
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    SurfaceMesh s;
+    s.vertices.reserve(used.size());
+    for (std::int32_t v : used) s.vertices.push_back(vertices[static_cast<std::size_t>(v)]);
+    for (Tri& t : triangles)
+        for (auto& v : t) v = static_cast<std::int32_t>(std::lower_bound(used.begin(), used.end(), v) - used.begin());
+    s.triangles = std::move(triangles);
+    return s;
 }
 
 void append(SurfaceMesh& a, const SurfaceMesh& b) {

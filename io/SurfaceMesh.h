@@ -38,6 +38,10 @@ BBox boundingBox(const SurfaceMesh& mesh);
 /// closed, outward-oriented surface. Meaningless for open or inconsistently oriented meshes.
 double signedVolume(const SurfaceMesh& mesh);
 
+/// The triangles `triangles` (indices into `vertices`) over only the vertices they use, kept in
+/// index order. Cost: O(k log k) for k triangle corners (no array as large as `vertices`).
+SurfaceMesh compactSurface(const std::vector<Vec3>& vertices, std::vector<Tri> triangles);
+
 /// Appends b to a (indices of b shifted).
 void append(SurfaceMesh& a, const SurfaceMesh& b);
 

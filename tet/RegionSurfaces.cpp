@@ -35,24 +35,9 @@ std::map<Label, RegionBoundary> regionBoundaries(const TetMesh& mesh) {
         }
     }
     std::map<Label, RegionBoundary> out;
-    std::vector<std::int32_t> local(mesh.nodes.size(), -1);  // node -> surface vertex, reset per region
     for (auto& [label, tris] : faces) {
         out[label].otherSide = std::move(others[label]);
-        SurfaceMesh& s = out[label].surface;
-        std::vector<std::int32_t> used;
-        used.reserve(3 * tris.size());
-        for (const Tri& t : tris) used.insert(used.end(), t.begin(), t.end());
-        std::sort(used.begin(), used.end());
-        used.erase(std::unique(used.begin(), used.end()), used.end());
-        s.vertices.reserve(used.size());
-        for (std::size_t i = 0; i < used.size(); ++i) {
-            local[static_cast<std::size_t>(used[i])] = static_cast<std::int32_t>(i);
-            s.vertices.push_back(mesh.nodes[static_cast<std::size_t>(used[i])]);
-        }
-        s.triangles.reserve(tris.size());
-        for (const Tri& t : tris)
-            s.triangles.push_back({local[static_cast<std::size_t>(t[0])], local[static_cast<std::size_t>(t[1])], local[static_cast<std::size_t>(t[2])]});
-        for (std::int32_t v : used) local[static_cast<std::size_t>(v)] = -1;
+        out[label].surface = compactSurface(mesh.nodes, std::move(tris));
     }
     return out;
 }
@@ -66,7 +51,7 @@ std::map<Label, SurfaceMesh> regionSurfaces(const TetMesh& mesh) {
 InterfaceComplex meshInterfaces(const TetMesh& mesh) {
     const TetFaceAdjacency adj = tetFaceAdjacency(mesh);
     InterfaceComplex c;
-    std::vector<std::int32_t> newIndex(mesh.nodes.size(), -1);
+    std::vector<Tri> tris;
     for (std::size_t g = 0; g < adj.groupCount(); ++g) {
         if (insideOneRegion(adj, mesh, g)) continue;
         const TetFaceRef& f = adj.faces[std::size_t(adj.groupStart[g])];
@@ -75,17 +60,10 @@ InterfaceComplex meshInterfaces(const TetMesh& mesh) {
                                                   : kOutsideLabel;
         auto tri = outwardFace(mesh.tets[std::size_t(f.tet)], f.local);  // normal into `other`
         if (other > in) std::swap(tri[1], tri[2]);                        // normal into the smaller label
-        c.surface.triangles.push_back({tri[0], tri[1], tri[2]});
+        tris.push_back({tri[0], tri[1], tri[2]});
         c.sides.push_back({std::min(in, other), std::max(in, other)});
-        for (auto v : tri) newIndex[std::size_t(v)] = 0;
     }
-    for (std::size_t i = 0; i < mesh.nodes.size(); ++i)
-        if (newIndex[i] == 0) {
-            newIndex[i] = std::int32_t(c.surface.vertices.size());
-            c.surface.vertices.push_back(mesh.nodes[i]);
-        }
-    for (Tri& t : c.surface.triangles)
-        for (auto& v : t) v = newIndex[std::size_t(v)];
+    c.surface = compactSurface(mesh.nodes, std::move(tris));
     return c;
 }
 

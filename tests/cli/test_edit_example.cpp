@@ -3,6 +3,7 @@
 // The edited mesh must be valid, without tooth 24 and its PDL, with the socket left empty and the
 // rest (bone, tooth 25, PDL 25) as in the run from the unedited grids.
 #include "io/GmshReader.h"
+#include "tet/RegionSurfaces.h"
 #include "support/TestData.h"
 #include "support_CliRun.h"
 
@@ -18,12 +19,7 @@ namespace fs = std::filesystem;
 
 std::map<Label, double> volumeByLabel(const TetMesh& m) {
     std::map<Label, double> v;
-    for (std::size_t t = 0; t < m.tets.size(); ++t) {
-        const Vec3& a = m.nodes[std::size_t(m.tets[t][0])];
-        v[m.labels[t]] += (m.nodes[std::size_t(m.tets[t][1])] - a)
-                              .dot((m.nodes[std::size_t(m.tets[t][2])] - a).cross(m.nodes[std::size_t(m.tets[t][3])] - a)) /
-                          6.0;
-    }
+    for (const auto& [label, surface] : regionSurfaces(m)) v[label] = signedVolume(surface);
     return v;
 }
 

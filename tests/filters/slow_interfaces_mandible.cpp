@@ -52,22 +52,52 @@ struct Worst {
     Vec3 at = Vec3::Zero();
 };
 
-/// Largest excess over the bound of interface p of the distance from every vertex of `from`
-/// (those used by fromTris) to the triangles of `to`.
-Worst worstVertex(const InterfaceComplex& from, const std::vector<Tri>& fromTris, const std::vector<char>& near,
-                  const TriangleBvh& bvh, const Pair& p, const SimplifyOptions& o) {
+/// Points to measure from, each with whether it counts as near the teeth (verticesNearTeeth).
+struct Probe {
+    std::vector<Vec3> points;
+    std::vector<char> near;
+};
+
+/// The vertices of `tris`, each once.
+Probe verticesOf(const InterfaceComplex& c, const std::vector<Tri>& tris, const std::vector<char>& near) {
     std::vector<std::int32_t> verts;
-    for (const Tri& t : fromTris) verts.insert(verts.end(), t.begin(), t.end());
+    for (const Tri& t : tris) verts.insert(verts.end(), t.begin(), t.end());
     std::sort(verts.begin(), verts.end());
     verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-    std::vector<double> d(verts.size());
-    tbb::parallel_for(std::size_t(0), verts.size(), [&](std::size_t i) {
-        d[i] = std::sqrt(closestTriangle(bvh, from.surface.vertices[std::size_t(verts[i])]).squaredDistanceMm2);
-    });
+    Probe p;
+    for (auto v : verts) {
+        p.points.push_back(c.surface.vertices[std::size_t(v)]);
+        p.near.push_back(near[std::size_t(v)]);
+    }
+    return p;
+}
+
+/// The vertices of `tris` and their centroids (near when a corner is).
+Probe verticesAndCentroidsOf(const InterfaceComplex& c, const std::vector<Tri>& tris, const std::vector<char>& near) {
+    Probe p = verticesOf(c, tris, near);
+    for (const Tri& t : tris) {
+        Vec3 centroid = Vec3::Zero();
+        bool anyNear = false;
+        for (auto v : t) {
+            centroid += c.surface.vertices[std::size_t(v)] / 3.0;
+            anyNear = anyNear || near[std::size_t(v)] != 0;
+        }
+        p.points.push_back(centroid);
+        p.near.push_back(anyNear);
+    }
+    return p;
+}
+
+/// Largest excess over the bound of interface p of the distance from the probe's points to the
+/// triangles in `bvh`.
+Worst worstPoint(const Probe& probe, const TriangleBvh& bvh, const Pair& p, const SimplifyOptions& o) {
+    std::vector<double> d(probe.points.size());
+    tbb::parallel_for(std::size_t(0), d.size(),
+                      [&](std::size_t i) { d[i] = std::sqrt(closestTriangle(bvh, probe.points[i]).squaredDistanceMm2); });
     Worst w;
-    for (std::size_t i = 0; i < verts.size(); ++i) {
-        const double excess = d[i] - boundFor(p, near[std::size_t(verts[i])] != 0, o);
-        if (excess > w.excessMm) w = {excess, d[i], from.surface.vertices[std::size_t(verts[i])]};
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        const double excess = d[i] - boundFor(p, probe.near[i] != 0, o);
+        if (excess > w.excessMm) w = {excess, d[i], probe.points[i]};
     }
     return w;
 }
@@ -140,28 +170,10 @@ TEST(SlowInterfaces, MandibleSurfaceIsIntersectionFreeClosedOfTheLabelTopologyAn
     for (const auto& [p, rawTris] : rawBy) {
         ASSERT_TRUE(coarseBy.count(p)) << labelName(p.first) << "|" << labelName(p.second);
         const auto& coarseTris = coarseBy.at(p);
-        const Worst a = worstVertex(raw, rawTris, rawNear, buildTriangleBvh(coarse.surface.vertices, coarseTris), p, so);
-        // the meshed side: its vertices and the centroids of its triangles, as extra vertices
-        InterfaceComplex probe;
-        std::vector<char> probeNear;
-        std::vector<Tri> probeTris;
-        for (const Tri& t : coarseTris) {
-            const Vec3 c = (coarse.surface.vertices[std::size_t(t[0])] + coarse.surface.vertices[std::size_t(t[1])] +
-                            coarse.surface.vertices[std::size_t(t[2])]) / 3.0;
-            const std::int32_t base = std::int32_t(probe.surface.vertices.size());
-            bool near = false;
-            for (auto v : t) {
-                probe.surface.vertices.push_back(coarse.surface.vertices[std::size_t(v)]);
-                near = near || coarseNear[std::size_t(v)] != 0;
-                probeNear.push_back(coarseNear[std::size_t(v)]);
-            }
-            probe.surface.vertices.push_back(c);
-            probeNear.push_back(near);
-            probeTris.push_back({base, base + 1, base + 3});
-            probeTris.push_back({base + 1, base + 2, base + 3});
-        }
-        const Worst own = worstVertex(probe, probeTris, probeNear, buildTriangleBvh(raw.surface.vertices, rawTris), p, so);
-        const Worst b = worstVertex(probe, probeTris, probeNear, wholeRaw, p, so);
+        const Worst a = worstPoint(verticesOf(raw, rawTris, rawNear), buildTriangleBvh(coarse.surface.vertices, coarseTris), p, so);
+        const Probe meshed = verticesAndCentroidsOf(coarse, coarseTris, coarseNear);
+        const Worst own = worstPoint(meshed, buildTriangleBvh(raw.surface.vertices, rawTris), p, so);
+        const Worst b = worstPoint(meshed, wholeRaw, p, so);
         worstRaw = std::max(worstRaw, a.distanceMm);
         worstCoarse = std::max(worstCoarse, b.distanceMm);
         worstCoarsePerPair = std::max(worstCoarsePerPair, own.distanceMm);
