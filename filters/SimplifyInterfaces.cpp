@@ -154,10 +154,35 @@ inline std::uint64_t edgeKey(std::int32_t a, std::int32_t b) {
     return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
 }
 
+/// The input surface around each input vertex, for the distance from new triangles back to it.
+struct InputSurface {
+    const std::vector<Tri>* tris = nullptr;
+    std::vector<std::uint32_t> start;  ///< per input vertex: its triangles are list[start[v], start[v + 1])
+    std::vector<std::int32_t> list;
+
+    explicit InputSurface(const InterfaceComplex& input) : tris(&input.surface.triangles) {
+        start.assign(input.surface.vertices.size() + 1, 0);
+        for (const Tri& f : *tris)
+            for (std::int32_t v : f) ++start[std::size_t(v) + 1];
+        for (std::size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+        list.resize(start.back());
+        std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+        for (std::size_t t = 0; t < tris->size(); ++t)
+            for (std::int32_t v : (*tris)[t]) list[next[std::size_t(v)]++] = std::int32_t(t);
+    }
+    template <typename F>
+    bool anyAround(std::int32_t v, F&& f) const {
+        for (std::uint32_t i = start[std::size_t(v)]; i < start[std::size_t(v) + 1]; ++i)
+            if (f(list[i])) return true;
+        return false;
+    }
+};
+
 /// The mesh between passes, in input vertex ids (input vertices never move, so an id is also a
 /// position). Triangles carry the input vertices they stand for (their error is tracked).
 struct State {
     const std::vector<Vec3>* points = nullptr;   ///< the input vertices
+    const InputSurface* input = nullptr;         ///< the input triangles around each input vertex
     std::vector<Tri> tris;
     std::vector<std::array<Label, 2>> sides;
     std::vector<std::vector<std::int32_t>> pts;  ///< per triangle: removed input vertices it carries
@@ -580,6 +605,8 @@ private:
             }
         }
 
+        if (plan && !newTrianglesNearInput(*plan)) return false;
+
         // Intersections: every new triangle against everything its box meets (exhaustive), or
         // against the triangles around u's and v's neighbours (local: folds and junctions; the
         // output check catches the rest and triggers an exhaustive rerun).
@@ -646,6 +673,55 @@ private:
                     if (it != curvePts_.end())
                         plan->curvePoints.insert(plan->curvePoints.end(), it->second.begin(), it->second.end());
                 }
+            }
+        }
+        return true;
+    }
+
+    /// The other direction of the error bound: every new triangle stays within the bound of the
+    /// input surface (a triangle can float over a dip whose input points all chose a neighbouring
+    /// triangle). Checked at its centroid and edge midpoints (where a flat triangle over a curved
+    /// surface is farthest from it), against the input triangles around the nearest input vertex
+    /// of the collapse (its removed points and the new triangles' corners), then their
+    /// neighbours': a distance to part of the input surface, so never an underestimate.
+    bool newTrianglesNearInput(const Plan& plan) {
+        near_.clear();
+        for (const auto& pt : plan.assign) near_.push_back(pt.first);
+        for (const Tri& f : newTris_)
+            for (std::int32_t x : f) near_.push_back(gid_[std::size_t(x)]);
+        std::sort(near_.begin(), near_.end());
+        near_.erase(std::unique(near_.begin(), near_.end()), near_.end());
+        const InputSurface& in = *state_.input;
+        for (std::size_t m = 0; m < moved_.size(); ++m) {
+            const auto& C = newCorners_[m];
+            const Vec3 samples[4] = {(C[0] + C[1] + C[2]) / 3.0, 0.5 * (C[0] + C[1]), 0.5 * (C[1] + C[2]), 0.5 * (C[2] + C[0])};
+            for (const Vec3& x : samples) {
+                std::int32_t p = -1;
+                double d2 = std::numeric_limits<double>::infinity();
+                for (std::int32_t q : near_) {
+                    const double e = (points_[std::size_t(q)] - x).squaredNorm();
+                    if (e < d2) {
+                        d2 = e;
+                        p = q;
+                    }
+                }
+                // near the teeth when any corner or that vertex is (NearTeeth.h): the tighter bound
+                double bound = boundOf(p, moved_[m]);
+                for (std::int32_t c : newTris_[m]) bound = std::min(bound, boundOf(gid_[std::size_t(c)], moved_[m]));
+                const double b2 = bound * bound;
+                if (d2 <= b2) continue;  // an input vertex (on the input surface) is that close
+                const auto within = [&](std::int32_t t) {
+                    const Tri& f = (*in.tris)[std::size_t(t)];
+                    return squaredDistanceToTriangle(x, points_[std::size_t(f[0])], points_[std::size_t(f[1])],
+                                                     points_[std::size_t(f[2])]) <= b2;
+                };
+                if (in.anyAround(p, within)) continue;
+                const bool second = in.anyAround(p, [&](std::int32_t t) {
+                    for (std::int32_t q : (*in.tris)[std::size_t(t)])
+                        if (q != p && in.anyAround(q, within)) return true;
+                    return false;
+                });
+                if (!second) return false;
             }
         }
         return true;
@@ -792,6 +868,7 @@ private:
     std::vector<std::uint32_t> stamp_;
     std::vector<char> dead_;
     std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts_;
+    std::vector<std::int32_t> near_;    ///< newTrianglesNearInput's input vertices
     std::unordered_map<int, PairRule> rules_;
     BoxGrid grid_;
     double cosTurn_ = 0.5;
@@ -995,9 +1072,11 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     // ~100 bytes per input vertex for the whole run (about 1.3 GB on a mandible).
     const auto& P = input.surface.vertices;
     std::vector<char> nearTeeth = verticesNearTeeth(input, options.boneNearTeethMm);
+    const InputSurface inputSurface(input);
     const auto startState = [&] {
         State st;
         st.points = &P;
+        st.input = &inputSurface;
         st.tris = input.surface.triangles;
         st.sides = input.sides;
         st.pts.resize(st.tris.size());

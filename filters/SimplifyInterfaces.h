@@ -14,7 +14,9 @@
 //    pair; on bone / outside looser far from the teeth) of the output triangles of that
 //    interface, and every removed curve vertex within the bound of its curve (tracked exactly;
 //    the reported maximum is this one-sided Hausdorff distance from the input vertices to the
-//    output).
+//    output); the other way, the centroid and edge midpoints of every new triangle stay within
+//    the bound of the input surface (distance to the input triangles around the nearest input
+//    vertex of the collapse, an upper bound of the true distance).
 //  - quality: no new triangle has an angle below minAngleDeg unless it replaces a triangle that
 //    was already worse, no normal turns by more than maxNormalTurnDeg, no new edge is longer than
 //    the interface's maximum edge, and no region comes to span less than minWedgeDeg around an
@@ -101,7 +103,7 @@ std::string interfaceKind(Label a, Label b);
 /// self-intersections). Seeds are placed anew inside every shell of every region of the output
 /// (filters/ShellSeeds.h). Throws Error when the options are invalid or the output check finds an
 /// intersection (which means the input had one); Cancelled when progress is cancelled.
-/// Cost: O(n log n) in the input triangles; memory about 200 bytes per input triangle.
+/// Cost: O(n log n) in the input triangles; memory about 215 bytes per input triangle.
 InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const SimplifyOptions& options = {},
                                     Progress& progress = noProgress(), SimplifyStats* stats = nullptr);
 
