@@ -3,15 +3,17 @@
 // from a run's volumetric .msh, so sizing and quality options can be compared on real output
 // (e.g. the shared mandible) without repeating extraction and simplification.
 // Usage: bench_retet <mesh.msh> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
-// max (edge mm), O (optimisation level), repair (attempts), improve (0/1).
+// max (edge mm), O (optimisation level), repair (attempts), improve (0/1). BENCH_WRITE=<file.msh> writes the mesh.
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
+#include "io/GmshWriter.h"
 #include "tet/RegionSurfaces.h"
 #include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string>
 
@@ -60,5 +62,8 @@ int main(int argc, char** argv) {
                 "%s, %d attempts | %.0f s | violations %zu |\n",
                 argv[1], out.nodes.size(), out.tets.size(), perKind["bone"], perKind["tooth"], perKind["pdl"], s.minDihedralDeg,
                 s.belowMinDihedral, o.minDihedralDeg, s.slivers.badBefore, s.switches.c_str(), s.attempts, sec, r.violationCount());
+    // BENCH_WRITE=<file.msh>: keep the mesh (with improve=0, the raw TetGen output that
+    // bench_improve_slivers can then be measured on without running TetGen again)
+    if (const char* path = std::getenv("BENCH_WRITE")) jawmesh::writeGmsh(out, path);
     return 0;
 }

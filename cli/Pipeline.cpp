@@ -205,6 +205,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
                           {"splits", sl.splits},
                           {"face_splits", sl.faceSplits},
                           {"cavity_stars", sl.cavityStars},
+                          {"interface_insertions", sl.interfaceInsertions},
                           {"seconds", sl.seconds}}}};
 
     const ValidationReport report =

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <tuple>
 #include <utility>
@@ -35,9 +36,9 @@ double score(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 
 double scoreToDeg(double s) { return s <= kInvalid ? 0.0 : std::acos(std::clamp(-s, -1.0, 1.0)) * 180.0 / M_PI; }
 
-/// What a local operation optimises over the tets it changes: first the worst score, then the
-/// total shortfall below the target (so a bad tet next to a worse one that no operation can fix
-/// is still improved).
+/// What a local operation optimises over the tets it changes: the worst score and the total
+/// shortfall below the target (so a bad tet next to a worse one that no operation can fix is
+/// still improved).
 struct Objective {
     double worst = std::numeric_limits<double>::infinity();
     double deficit = 0;
@@ -45,9 +46,13 @@ struct Objective {
         worst = std::min(worst, s);
         deficit += std::max(0.0, target - s);
     }
+    /// Better when neither the worst score nor the shortfall gets worse and one of them improves
+    /// (Pareto). Trading one for the other lets the improver churn: raising the worst tet of a
+    /// star while pushing several good ones under the target (the shared mandible: 260 tets left
+    /// under 10 degrees that way, 62 with this rule, from TetGen's 27,619).
     bool betterThan(const Objective& o) const {
-        if (worst > o.worst + 1e-9) return true;
-        return worst >= o.worst - 1e-12 && deficit < o.deficit - 1e-9;
+        if (worst < o.worst - 1e-12 || deficit > o.deficit + 1e-12) return false;
+        return worst > o.worst + 1e-9 || deficit < o.deficit - 1e-9;
     }
 };
 
@@ -62,9 +67,13 @@ bool insideCircumsphere(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
     return (q - a - centre).squaredNorm() < centre.squaredNorm();
 }
 
+/// Which outer faces of a cavity to leave out of its star (sorted node triples).
+using FaceFilter = std::function<bool(const std::array<std::int32_t, 3>&)>;
+
 class SliverImprover {
 public:
-    SliverImprover(TetMesh& m, const SliverOptions& o) : m_(m), target_(-std::cos(o.targetMinDihedralDeg * M_PI / 180.0)) {
+    SliverImprover(TetMesh& m, const SliverOptions& o)
+        : m_(m), target_(-std::cos(o.targetMinDihedralDeg * M_PI / 180.0)), interfaceInsertions_(o.interfaceInsertions) {
         alive_.assign(m.tets.size(), 1);
         star_.resize(m.nodes.size());
         for (std::size_t t = 0; t < m.tets.size(); ++t)
@@ -108,7 +117,8 @@ public:
                 return true;
             }
         if (flip23Around(t, st) || removeEdgeAround(t, st)) return true;
-        return splitAround(t, st) || splitFaceAround(t, st) || starCavityAround(t, st);
+        return splitAround(t, st) || splitFaceAround(t, st) || starCavityAround(t, st) ||
+               (interfaceInsertions_ && insertOnInterfaceAround(t, st));
     }
 
     void compact() {
@@ -255,6 +265,13 @@ private:
     /// Face k of t (the three nodes other than t[k]) and the tet on its other side when that tet
     /// has t's label (-1 otherwise: an interface, the outside).
     std::int32_t sameRegionNeighbour(std::int32_t t, int k, std::int32_t f[3]) const {
+        const std::int32_t s = acrossFace(t, k, f);
+        return s >= 0 && m_.labels[std::size_t(s)] == m_.labels[std::size_t(t)] ? s : -1;
+    }
+
+    /// Face k of t (the three nodes other than t[k]) and the tet on its other side, whatever its
+    /// label (-1: the mesh boundary).
+    std::int32_t acrossFace(std::int32_t t, int k, std::int32_t f[3]) const {
         const Tet& e = m_.tets[std::size_t(t)];
         int n = 0;
         for (int j = 0; j < 4; ++j)
@@ -262,8 +279,7 @@ private:
         for (auto s : star_[std::size_t(f[0])]) {
             if (s == t) continue;
             const Tet& g = m_.tets[std::size_t(s)];
-            if (std::find(g.begin(), g.end(), f[1]) != g.end() && std::find(g.begin(), g.end(), f[2]) != g.end())
-                return m_.labels[std::size_t(s)] == m_.labels[std::size_t(t)] ? s : -1;
+            if (std::find(g.begin(), g.end(), f[1]) != g.end() && std::find(g.begin(), g.end(), f[2]) != g.end()) return s;
         }
         return -1;
     }
@@ -512,7 +528,6 @@ private:
                 const double len = (P(e[std::size_t(k1)]) - P(e[std::size_t(k2)])).norm();
                 for (double h : {0.15, 0.3, 0.45, 0.6, 0.9}) starts.push_back(a + h * len * in);
             }
-        const Objective before = objectiveOf({t});
         for (const Vec3& q : starts) {
             std::vector<std::int32_t> cavity = circumsphereCavity(t, q);
             if (!growUntilStarShaped(cavity, q)) continue;
@@ -523,7 +538,7 @@ private:
                 for (auto& v : x)
                     if (v < 0) v = m;
             const auto [p, after] = bestPosition(tets, m, q);
-            if (!after.betterThan(objectiveOf(cavity)) || !after.betterThan(before)) {
+            if (!after.betterThan(objectiveOf(cavity))) {
                 m_.nodes.pop_back();
                 continue;
             }
@@ -535,10 +550,139 @@ private:
         return false;
     }
 
-    /// t and the tets of its region connected to it through faces whose circumsphere holds q
-    /// (at most 64 tets).
-    std::vector<std::int32_t> circumsphereCavity(std::int32_t t, const Vec3& q) const {
-        std::vector<std::int32_t> cavity{t};
+    /// Inserts a vertex on an interface next to t: on one of t's faces or edges that lie on an
+    /// interface (or the mesh boundary), so the surface keeps its geometry (the point is on the
+    /// triangle or segment) and both sides keep sharing their faces. Every region around the
+    /// point gets a Bowyer-Watson cavity grown from the tets that hold the point, starred from it
+    /// over the cavity's outer faces except those the point lies on (their cones are flat; the
+    /// split interface triangles come out as the new faces through the point). This is the one
+    /// operation that can mend a sliver wedged between two close interfaces (a PDL one tet thick)
+    /// or with all four nodes on them: TetGen under -Y may not put a node there itself.
+    /// Candidates: the centroid of each interface face of t and the projection of t's opposite
+    /// node on it (when inside), the midpoint of each interface edge and its point closest to the
+    /// opposite edge. The best candidate is made when it raises the objective over the tets it
+    /// replaces and t's own score.
+    bool insertOnInterfaceAround(std::int32_t t, SliverStats& st) {
+        const Tet e = m_.tets[std::size_t(t)];
+        struct Candidate {
+            Vec3 q;
+            std::vector<std::int32_t> holders;  // tets whose closure holds q
+            std::array<std::int32_t, 3> carrier;  // the face (or edge: carrier[2] = -1) q lies on
+        };
+        std::vector<Candidate> candidates;
+        for (int k = 0; k < 4; ++k) {
+            std::int32_t f[3];
+            const std::int32_t other = acrossFace(t, k, f);
+            if (other >= 0 && m_.labels[std::size_t(other)] == m_.labels[std::size_t(t)]) continue;
+            std::vector<std::int32_t> holders{t};
+            if (other >= 0) holders.push_back(other);
+            std::array<std::int32_t, 3> key{f[0], f[1], f[2]};
+            std::sort(key.begin(), key.end());
+            const Vec3 &a = P(f[0]), &b = P(f[1]), &c = P(f[2]);
+            candidates.push_back({(a + b + c) / 3.0, holders, key});
+            // the opposite node's foot on the face, when strictly inside it
+            const Vec3 n = (b - a).cross(c - a);
+            const double n2 = n.squaredNorm();
+            if (!(n2 > 0)) continue;
+            const Vec3 foot = P(e[std::size_t(k)]) - n * (n.dot(P(e[std::size_t(k)]) - a) / n2);
+            const double wa = n.dot((b - foot).cross(c - foot)) / n2, wb = n.dot((c - foot).cross(a - foot)) / n2;
+            const double wc = 1.0 - wa - wb;
+            if (std::min({wa, wb, wc}) > 0.1) candidates.push_back({wa * a + wb * b + wc * c, holders, key});
+        }
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) {
+                const std::int32_t a = e[std::size_t(i)], b = e[std::size_t(j)];
+                const std::vector<std::int32_t> ring = tetsWith(a, b);
+                if (!interiorRing(a, b, m_.labels[std::size_t(t)]).empty()) continue;  // not on an interface
+                std::array<std::int32_t, 3> key{std::min(a, b), std::max(a, b), -1};
+                candidates.push_back({0.5 * (P(a) + P(b)), ring, key});
+                // the point of a-b closest to the opposite edge c-d
+                std::int32_t cd[2], n = 0;
+                for (auto v : e)
+                    if (v != a && v != b) cd[n++] = v;
+                const Vec3 u = P(b) - P(a), w = P(cd[1]) - P(cd[0]), r = P(a) - P(cd[0]);
+                const double uu = u.dot(u), uw = u.dot(w), ww = w.dot(w), ur = u.dot(r), wr = w.dot(r);
+                const double den = uu * ww - uw * uw;
+                if (!(den > 1e-12 * uu * ww)) continue;
+                const double s = (uw * wr - ww * ur) / den;
+                if (s > 0.15 && s < 0.85 && std::abs(s - 0.5) > 0.05) candidates.push_back({P(a) + s * u, ring, key});
+            }
+
+        struct Best {
+            Objective objective;
+            Vec3 q;
+            std::vector<std::int32_t> old;
+            std::vector<std::pair<Tet, Label>> fresh;
+        } best;
+        bool found = false;
+        for (const Candidate& c : candidates) {
+            const bool onFace = c.carrier[2] >= 0;
+            const FaceFilter skip = [&](const std::array<std::int32_t, 3>& face) {
+                if (onFace) return face == c.carrier;
+                return std::binary_search(face.begin(), face.end(), c.carrier[0]) &&
+                       std::binary_search(face.begin(), face.end(), c.carrier[1]);
+            };
+            std::vector<std::int32_t> old;
+            std::vector<std::pair<Tet, Label>> fresh;
+            Objective after;
+            bool ok = true;
+            std::vector<Label> labels;
+            for (auto h : c.holders) labels.push_back(m_.labels[std::size_t(h)]);
+            std::sort(labels.begin(), labels.end());
+            labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+            for (Label label : labels) {
+                std::vector<std::int32_t> cavity;
+                for (auto h : c.holders)
+                    if (m_.labels[std::size_t(h)] == label) cavity.push_back(h);
+                growCircumsphereCavity(cavity, c.q);
+                if (!growUntilStarShaped(cavity, c.q, skip)) {
+                    ok = false;
+                    break;
+                }
+                double volOld = 0, volNew = 0;
+                for (auto x : cavity) {
+                    const Tet& g = m_.tets[std::size_t(x)];
+                    volOld += signedVolume6(P(g[0]), P(g[1]), P(g[2]), P(g[3]));
+                }
+                for (Tet x : starOfCavity(cavity, skip)) {
+                    const Vec3* p[4];
+                    for (int k = 0; k < 4; ++k) p[k] = x[std::size_t(k)] < 0 ? &c.q : &P(x[std::size_t(k)]);
+                    const double s6 = score(*p[0], *p[1], *p[2], *p[3]);
+                    volNew += signedVolume6(*p[0], *p[1], *p[2], *p[3]);
+                    after.add(s6, target_);
+                    fresh.emplace_back(x, label);
+                }
+                // the star fills exactly the cavity (no face of it missed or counted twice)
+                if (std::abs(volNew - volOld) > 1e-9 * volOld) {
+                    ok = false;
+                    break;
+                }
+                old.insert(old.end(), cavity.begin(), cavity.end());
+            }
+            if (!ok || after.worst <= kInvalid || !after.betterThan(objectiveOf(old))) continue;
+            if (!found || after.betterThan(best.objective)) {
+                best = {after, c.q, old, fresh};
+                found = true;
+            }
+        }
+        if (!found) return false;
+        const auto m = std::int32_t(m_.nodes.size());
+        m_.nodes.push_back(best.q);
+        star_.emplace_back();
+        fixed_.push_back(1);  // on an interface: it never moves
+        for (auto x : best.old) kill(x);
+        for (auto& [x, label] : best.fresh) {
+            for (auto& v : x)
+                if (v < 0) v = m;
+            add(x, label);
+        }
+        ++st.interfaceInsertions;
+        return true;
+    }
+
+    /// Adds to `cavity` (tets of one region) the tets of that region connected to it through
+    /// faces whose circumsphere holds q (at most 64 tets in all).
+    void growCircumsphereCavity(std::vector<std::int32_t>& cavity, const Vec3& q) const {
         for (std::size_t i = 0; i < cavity.size() && cavity.size() < 64; ++i)
             for (int k = 0; k < 4; ++k) {
                 std::int32_t f[3];
@@ -547,6 +691,13 @@ private:
                 const Tet& g = m_.tets[std::size_t(s)];
                 if (insideCircumsphere(P(g[0]), P(g[1]), P(g[2]), P(g[3]), q)) cavity.push_back(s);
             }
+    }
+
+    /// t and the tets of its region connected to it through faces whose circumsphere holds q
+    /// (at most 64 tets).
+    std::vector<std::int32_t> circumsphereCavity(std::int32_t t, const Vec3& q) const {
+        std::vector<std::int32_t> cavity{t};
+        growCircumsphereCavity(cavity, q);
         return cavity;
     }
 
@@ -554,10 +705,10 @@ private:
     /// until q sees them all (true) or such a face is on the region's boundary or the cavity grows
     /// past 64 tets (false). TetGen's output is not Delaunay after improvement, so the
     /// circumsphere cavity alone is not always star-shaped.
-    bool growUntilStarShaped(std::vector<std::int32_t>& cavity, const Vec3& q) const {
+    bool growUntilStarShaped(std::vector<std::int32_t>& cavity, const Vec3& q, const FaceFilter& skip = {}) const {
         while (cavity.size() <= 64) {
             bool grown = false;
-            const std::vector<Tet> star = starOfCavity(cavity);
+            const std::vector<Tet> star = starOfCavity(cavity, skip);
             for (const Tet& x : star) {
                 const Vec3* p[4];
                 int hole = 0;
@@ -599,7 +750,7 @@ private:
     /// The outer faces of `cavity` (faces of one of its tets only), each as its tet with the
     /// opposite vertex replaced by -1: orientation kept, so with a new vertex there every tet is
     /// positive exactly when that vertex sees the face from inside.
-    std::vector<Tet> starOfCavity(const std::vector<std::int32_t>& cavity) const {
+    std::vector<Tet> starOfCavity(const std::vector<std::int32_t>& cavity, const FaceFilter& skip = {}) const {
         std::vector<std::array<std::int32_t, 3>> keys;
         for (auto c : cavity)
             for (int i = 0; i < 4; ++i) {
@@ -614,6 +765,7 @@ private:
         for (std::size_t ci = 0; ci < cavity.size(); ++ci)
             for (int i = 0; i < 4; ++i) {
                 if (std::count(keys.begin(), keys.end(), keys[4 * ci + std::size_t(i)]) > 1) continue;
+                if (skip && skip(keys[4 * ci + std::size_t(i)])) continue;
                 Tet x = m_.tets[std::size_t(cavity[ci])];
                 x[std::size_t(i)] = -1;
                 star.push_back(x);
@@ -623,6 +775,7 @@ private:
 
     TetMesh& m_;
     double target_;
+    bool interfaceInsertions_;
     std::vector<char> alive_, fixed_;
     std::vector<std::vector<std::int32_t>> star_;
 };

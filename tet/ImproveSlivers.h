@@ -1,4 +1,4 @@
-// Raises the smallest dihedral angle of a labeled tet mesh by local operations that never touch an
+// Raises the smallest dihedral angle of a labeled tet mesh by local operations that never move an
 // interface: TetGen with a preserved boundary (-Y) cannot split an interface triangle, so it leaves
 // slivers wedged between two close interfaces (the 0.2 mm PDL) or at inherited thin triangles.
 //
@@ -12,9 +12,13 @@
 //    volume conservation;
 //  - splits: an edge or a face inside one region gets a new vertex, which is then smoothed;
 //  - cavity star: a tet and its same-region neighbours are replaced by the star of a new vertex
-//    over their outer faces (a flat tet on two boundary faces of a ridge needs a vertex above it).
-// Interface faces, interface vertices and labels never change, so conformity and every region's
-// geometry are kept. Serial and deterministic (tets visited by quality, ties by index).
+//    over their outer faces (a flat tet on two boundary faces of a ridge needs a vertex above it);
+//  - interface insertion, last: a new vertex on an interface triangle or edge of the tet, with a
+//    cavity starred from it in every region around it (a sliver wedged between two interfaces a
+//    PDL apart, or with all four nodes on interfaces, cannot be mended from inside one region).
+// Interface vertices never move and labels never change; interface triangles are only split by
+// a vertex on them, so conformity and every region's geometry are kept. Serial and deterministic
+// (tets visited by quality, ties by index).
 #pragma once
 
 #include "io/TetMesh.h"
@@ -26,6 +30,9 @@ namespace jawmesh {
 struct SliverOptions {
     double targetMinDihedralDeg = 10.0;  ///< tets below this are worked on
     int maxPasses = 24;                  ///< passes over the remaining bad tets (stops early when none changes anything)
+    /// Allow new nodes on interface triangles and edges (the surface keeps its geometry, its
+    /// triangles are split); off: interface faces stay exactly as they are.
+    bool interfaceInsertions = true;
 };
 
 struct SliverStats {
@@ -40,12 +47,14 @@ struct SliverStats {
     std::size_t splits = 0;     ///< edges split (one new node each)
     std::size_t faceSplits = 0; ///< faces split (one new node each)
     std::size_t cavityStars = 0; ///< a tet and its same-region neighbours starred from a new node
+    std::size_t interfaceInsertions = 0; ///< nodes inserted on an interface triangle or edge (cavities on every side)
     int passes = 0;
     double seconds = 0;
 };
 
 /// Improves `mesh` in place (tets positively oriented on input and output; labels kept per region;
-/// nodes may be appended, none removed or moved if it lies on an interface or the mesh boundary).
+/// nodes may be appended, none removed or moved if it lies on an interface or the mesh boundary;
+/// interface triangles may be split by appended nodes on them).
 /// Cost: O(T) to set up plus O(bad tets x star size) per pass.
 void improveSlivers(TetMesh& mesh, const SliverOptions& options = {}, SliverStats* stats = nullptr);
 

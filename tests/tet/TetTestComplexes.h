@@ -34,4 +34,9 @@ std::map<Label, double> complexVolumes(const InterfaceComplex& complex);
 /// [-4, 4] x [-2.5, 2.5]^2 whose faces are tessellated at about `boxSpacing` mm.
 InterfaceComplex nestedSpheresComplex(int subdivisions = 2, double boxSpacing = 0.5);
 
+/// Tooth 24 (icosphere r 1.0) in a PDL shell `thicknessMm` thick whose outer sphere is turned
+/// against the inner one, in a bone box [-2, 2]^3: a PDL one tet thick, whose tets TetGen under
+/// -Y can only span between the two spheres' nodes (slivers where they do not face each other).
+InterfaceComplex thinPdlComplex(double thicknessMm, int subdivisions);
+
 }  // namespace jawmesh::test

@@ -1,5 +1,7 @@
 #include "tet/TetTestComplexes.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <queue>
 
@@ -210,6 +212,22 @@ InterfaceComplex nestedSpheresComplex(int subdivisions, double boxSpacing) {
         c.seeds.push_back({Vec3(t.x, 0, 1.15), pdlLabel(t.unn)});
     }
     c.seeds.push_back({Vec3(-3.8, -2.3, -2.3), bone});
+    return c;
+}
+
+InterfaceComplex thinPdlComplex(double thicknessMm, int subdivisions) {
+    InterfaceComplex c;
+    const Label bone = kMandibleBoneLabel;
+    addSurface(c, boxSurface(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0.5), bone, kOutsideLabel);
+    SurfaceMesh outer = icosphere(Vec3::Zero(), 1.0 + thicknessMm, subdivisions);
+    // turned about an oblique axis: no node of the root faces one of the socket straight on
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+    for (Vec3& v : outer.vertices) v = turn * v;
+    addSurface(c, outer, pdlLabel(24), bone);
+    addSurface(c, icosphere(Vec3::Zero(), 1.0, subdivisions), toothLabel(24), pdlLabel(24));
+    c.seeds.push_back({Vec3::Zero(), toothLabel(24)});
+    c.seeds.push_back({Vec3(0, 0, 1.0 + 0.5 * thicknessMm), pdlLabel(24)});
+    c.seeds.push_back({Vec3(-1.9, -1.9, -1.9), bone});
     return c;
 }
 

@@ -2,9 +2,11 @@
 // tets are flat gets its bad tets repaired without touching the interface, the boundary or the
 // volume of either region.
 #include "GridTetMesh.h"
+#include "TetTestComplexes.h"
 #include "tet/ElementQuality.h"
 #include "tet/ImproveSlivers.h"
 #include "tet/TetFaceAdjacency.h"
+#include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
 
 #include <gtest/gtest.h>
@@ -35,6 +37,42 @@ std::set<std::array<std::int32_t, 3>> interfaceFaces(const TetMesh& m) {
         out.insert(f0.key);
     }
     return out;
+}
+
+/// Area of the faces between different labels or on the outside (label 0), per sorted label
+/// pair: the interface geometry, whichever way its triangles are split.
+std::map<std::pair<Label, Label>, double> interfaceAreas(const TetMesh& m) {
+    std::map<std::pair<Label, Label>, double> out;
+    const TetFaceAdjacency adj = tetFaceAdjacency(m);
+    for (std::size_t g = 0; g < adj.groupCount(); ++g) {
+        if (insideOneRegion(adj, m, g)) continue;
+        const auto first = std::size_t(adj.groupStart[g]);
+        const auto& f = adj.faces[first].key;
+        Label a = m.labels[std::size_t(adj.faces[first].tet)];
+        Label b = adj.groupSize(g) == 2 ? m.labels[std::size_t(adj.faces[first + 1].tet)] : kOutsideLabel;
+        if (a > b) std::swap(a, b);
+        const Vec3& p = m.nodes[std::size_t(f[0])];
+        out[{a, b}] += 0.5 * (m.nodes[std::size_t(f[1])] - p).cross(m.nodes[std::size_t(f[2])] - p).norm();
+    }
+    return out;
+}
+
+std::map<Label, double> regionVolumes(const TetMesh& m) {
+    std::map<Label, double> vol;
+    for (std::size_t t = 0; t < m.tets.size(); ++t) vol[m.labels[t]] += volume(m, t);
+    return vol;
+}
+
+void expectSameGeometry(const TetMesh& after, const TetMesh& before) {
+    const auto a = interfaceAreas(after), b = interfaceAreas(before);
+    ASSERT_EQ(a.size(), b.size());
+    for (const auto& [pair, area] : b) EXPECT_NEAR(a.at(pair), area, 1e-9 * area) << pair.first << "|" << pair.second;
+    const auto va = regionVolumes(after), vb = regionVolumes(before);
+    ASSERT_EQ(va.size(), vb.size());
+    for (const auto& [label, vol] : vb) EXPECT_NEAR(va.at(label), vol, 1e-9 * vol) << label;
+    // the nodes of the interfaces before have not moved
+    for (const auto& f : interfaceFaces(before))
+        for (auto v : f) EXPECT_EQ(after.nodes[std::size_t(v)], before.nodes[std::size_t(v)]);
 }
 
 /// Every node off the interface (x = 3) and off the box pushed randomly, keeping tets positive.
@@ -82,15 +120,49 @@ TEST(ImproveSlivers, RepairsFlatTetsWithoutTouchingInterfacesOrVolumes) {
 
     EXPECT_TRUE(validateTetMesh(m, {}).valid());
     for (std::size_t t = 0; t < m.tets.size(); ++t) EXPECT_GT(volume(m, t), 0.0) << t;
-    // interfaces and the outside: the same faces on the same, unmoved nodes
-    EXPECT_EQ(interfaceFaces(m), interfaceFaces(before));
-    for (const auto& f : interfaceFaces(before))
-        for (auto v : f) EXPECT_EQ(m.nodes[std::size_t(v)], before.nodes[std::size_t(v)]);
-    // each region keeps its volume (27 + 27 mm^3... here 3 x 6 x 6 each)
-    std::map<Label, double> vol;
-    for (std::size_t t = 0; t < m.tets.size(); ++t) vol[m.labels[t]] += volume(m, t);
-    EXPECT_NEAR(vol[kBone], 108.0, 1e-9);
-    EXPECT_NEAR(vol[kTooth], 108.0, 1e-9);
+    // interfaces and the outside: the same area on unmoved nodes (split by nodes on them at most)
+    expectSameGeometry(m, before);
+    // each region keeps its volume (3 x 6 x 6 mm^3 each)
+    const auto vol = regionVolumes(m);
+    EXPECT_NEAR(vol.at(kBone), 108.0, 1e-9);
+    EXPECT_NEAR(vol.at(kTooth), 108.0, 1e-9);
+
+    // without interface insertions the interface faces themselves stay exactly as they were
+    TetMesh kept = distortedTwoRegionGrid();
+    SliverOptions inside;
+    inside.interfaceInsertions = false;
+    improveSlivers(kept, inside);
+    EXPECT_EQ(interfaceFaces(kept), interfaceFaces(before));
+}
+
+TEST(ImproveSlivers, InterfaceInsertionsMendSliversBetweenTwoCloseInterfaces) {
+    // TetGen under -Y on a PDL 0.04 mm thick between spheres of 0.3 mm edges turned against each
+    // other: its tets can only span the two spheres' nodes, and many are slivers that nothing
+    // inside one region can mend.
+    TetOptions o;
+    o.radiusEdgeRatio = 2.0;
+    o.repairAttempts = 0;
+    o.improveSlivers = false;
+    const TetMesh raw = tetrahedralize(test::thinPdlComplex(0.04, 2), o);
+    const QualityStats q0 = measureQuality(raw, 10.0);
+    ASSERT_GT(q0.belowDihedralThreshold, 0u) << "the thin PDL must give slivers";
+
+    TetMesh inside = raw, across = raw;
+    SliverOptions noInsertions;
+    noInsertions.interfaceInsertions = false;
+    SliverStats s0, s1;
+    improveSlivers(inside, noInsertions, &s0);
+    improveSlivers(across, SliverOptions{}, &s1);
+    std::printf("below 10 deg: %zu from TetGen, %zu inside the regions only, %zu with %zu interface insertions (min %.2f deg)\n",
+                q0.belowDihedralThreshold, s0.badAfter, s1.badAfter, s1.interfaceInsertions, s1.minDihedralAfterDeg);
+    EXPECT_GT(s0.badAfter, 0u) << "the regions alone cannot mend these";
+    EXPECT_GT(s1.interfaceInsertions, 0u);
+    // measured: 389 from TetGen, 234 inside the regions only, 127 with 72 insertions
+    EXPECT_LT(s1.badAfter, s0.badAfter * 3 / 4);
+    EXPECT_GE(s1.minDihedralAfterDeg, s0.minDihedralAfterDeg);
+    EXPECT_TRUE(validateTetMesh(across, {}).valid());
+    for (std::size_t t = 0; t < across.tets.size(); ++t) ASSERT_GT(volume(across, t), 0.0) << t;
+    expectSameGeometry(across, raw);
 }
 
 TEST(ImproveSlivers, LeavesAGoodMeshAloneAndIsDeterministic) {
