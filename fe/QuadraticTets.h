@@ -3,6 +3,7 @@
 #pragma once
 
 #include "io/GmshWriter.h"
+#include "io/SurfaceMesh.h"
 #include "io/TetMesh.h"
 
 #include <cstdint>
@@ -10,15 +11,8 @@
 
 namespace jawmesh {
 
-/// Mid-edge node of each edge, keyed by edgeKey(a, b).
+/// Mid-edge node of each edge, keyed by edgeKey(a, b) (io/SurfaceMesh.h).
 using EdgeMidNodes = std::unordered_map<std::uint64_t, std::int32_t>;
-
-/// Order-independent key of the edge between nodes a and b.
-inline std::uint64_t edgeKey(std::int32_t a, std::int32_t b) {
-    const auto lo = static_cast<std::uint64_t>(static_cast<std::uint32_t>(a < b ? a : b));
-    const auto hi = static_cast<std::uint64_t>(static_cast<std::uint32_t>(a < b ? b : a));
-    return (lo << 32) | hi;
-}
 
 /// Every tet of `mesh` as a Tet10 in Gmsh's node order (kGmshTet10Edges): the corner nodes keep
 /// their indices, one node per distinct edge is appended at the edge midpoint (straight edges), in

@@ -8,10 +8,10 @@
 namespace jawmesh {
 namespace {
 
-struct Candidate {
+struct VoxelCandidate {
     double depth;  // own signed distance, mm (more negative = deeper)
     openvdb::Coord voxel;
-    bool operator<(const Candidate& o) const {
+    bool operator<(const VoxelCandidate& o) const {
         return depth < o.depth || (depth == o.depth && voxel < o.voxel);
     }
 };
@@ -51,7 +51,7 @@ std::vector<RegionSeed> findRegionSeeds(const openvdb::Int32Grid& labels,
         std::vector<openvdb::BoolGrid::Ptr> components;
         openvdb::tools::segmentActiveVoxels(*mask, components);
         for (const auto& comp : components) {
-            std::vector<Candidate> cand;
+            std::vector<VoxelCandidate> cand;
             for (auto v = comp->tree().cbeginValueOn(); v; ++v) {
                 openvdb::Coord c = v.getCoord();
                 if (!v.isVoxelValue()) {

@@ -20,7 +20,7 @@ int findRoot(std::vector<int>& parent, int x) {
     return x;
 }
 
-struct Candidate {
+struct RayCandidate {
     Label label;
     std::size_t shell;      // index of the shell in the list of all shells
     std::int32_t triangle;
@@ -40,7 +40,7 @@ std::vector<RegionSeed> seedsInsideShells(const InterfaceComplex& complex) {
         for (Label L : complex.sides[t])
             if (L != kOutsideLabel) byLabel[L].push_back(std::int32_t(t));
 
-    std::vector<Candidate> candidates;
+    std::vector<RayCandidate> candidates;
     std::size_t shells = 0;
     for (const auto& [L, tris] : byLabel) {
         // Shells: triangles of L joined across shared edges.
@@ -77,7 +77,7 @@ std::vector<RegionSeed> seedsInsideShells(const InterfaceComplex& complex) {
     }
 
     tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
-        Candidate& c = candidates[i];
+        RayCandidate& c = candidates[i];
         double best = std::numeric_limits<double>::infinity();
         for (std::size_t t = 0; t < T.size(); ++t) {
             if (std::int32_t(t) == c.triangle) continue;
@@ -87,13 +87,13 @@ std::vector<RegionSeed> seedsInsideShells(const InterfaceComplex& complex) {
         c.freeLength = std::isfinite(best) ? best : 0.0;
     });
 
-    std::vector<const Candidate*> bestOfShell(shells, nullptr);
-    for (const Candidate& c : candidates)
+    std::vector<const RayCandidate*> bestOfShell(shells, nullptr);
+    for (const RayCandidate& c : candidates)
         if (c.freeLength > 0 && (!bestOfShell[c.shell] || c.freeLength > bestOfShell[c.shell]->freeLength))
             bestOfShell[c.shell] = &c;
     std::vector<RegionSeed> seeds;
     for (std::size_t s = 0; s < shells; ++s) {
-        const Candidate* c = bestOfShell[s];
+        const RayCandidate* c = bestOfShell[s];
         if (!c) throw Error("region seeds: a shell of a region has no inward ray (open or degenerate boundary)");
         seeds.push_back({c->origin + 0.5 * c->freeLength * c->inward, c->label});
     }

@@ -149,11 +149,6 @@ bool separatedByPlane(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const Tri
     return free > 0 && (above == free || below == free);
 }
 
-inline std::uint64_t edgeKey(std::int32_t a, std::int32_t b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
-
 /// The input surface around each input vertex, for the distance from new triangles back to it.
 struct InputSurface {
     const std::vector<Tri>* tris = nullptr;

@@ -10,11 +10,6 @@ namespace jawmesh {
 
 namespace {
 
-std::uint64_t edgeKey(std::int32_t a, std::int32_t b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
-
 /// The edges to split this round: per (vertex, region) with exactly three triangles, the longest
 /// edge opposite the vertex. Sorted and unique.
 std::vector<std::uint64_t> cornerEdges(const InterfaceComplex& c) {

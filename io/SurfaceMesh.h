@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace jawmesh {
@@ -20,6 +21,12 @@ struct SurfaceMesh {
     std::vector<Vec3> vertices;   ///< positions, mm
     std::vector<Tri> triangles;   ///< indices into vertices
 };
+
+/// Key of the undirected edge a-b (non-negative vertex indices): (min << 32) | max.
+inline std::uint64_t edgeKey(std::int32_t a, std::int32_t b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
 
 /// Axis-aligned bounding box, mm. Empty when min > max.
 struct BBox {

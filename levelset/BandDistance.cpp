@@ -150,7 +150,7 @@ inline void column(const LocalTriangle& t, float x, float y, float* out) {
 
 // Lowers best[] (squared index-space distances of the leaf's voxels) by one triangle, one
 // column along z at a time, skipping columns out of reach in xy or in the plane's slab.
-void rasterise(const LocalTriangle& t, float r, float* best) {
+void rasteriseBand(const LocalTriangle& t, float r, float* best) {
     int lo[2], hi[2];
     for (int d = 0; d < 2; ++d) {
         lo[d] = std::max(0, static_cast<int>(std::ceil(t.lo[d] - r)));
@@ -309,7 +309,7 @@ openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vec
                 const Vec3 originVec(origin.x(), origin.y(), origin.z());
                 std::fill(best, best + LeafT::SIZE, r2);
                 for (Entry* p = run; p != runEnd; ++p)
-                    rasterise(localTriangle(vx, triangles[p->triangle], originVec), static_cast<float>(r), best);
+                    rasteriseBand(localTriangle(vx, triangles[p->triangle], originVec), static_cast<float>(r), best);
                 std::unique_ptr<LeafT> leaf;
                 for (openvdb::Index i = 0; i < LeafT::SIZE; ++i) {
                     if (!(best[i] < r2)) continue;

@@ -34,7 +34,7 @@ private:
     double from_, to_;
 };
 
-constexpr int kLeafDim = openvdb::FloatTree::LeafNodeType::DIM;  // 8
+constexpr int kGridLeafDim = openvdb::FloatTree::LeafNodeType::DIM;  // 8
 inline int leafOffset(int x, int y, int z) { return ((x & 7) << 6) | ((y & 7) << 3) | (z & 7); }
 
 // Exact unsigned distance band (levelset/BandDistance.h) as a grid on the shared transform.
@@ -171,25 +171,25 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
             const openvdb::Coord o = leaf.origin();
             std::int8_t inside[512] = {0};
             std::int8_t outside[512] = {0};
-            int w[kLeafDim];
+            int w[kGridLeafDim];
             for (int axis = 0; axis < 3; ++axis) {
                 const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
-                for (int du = 0; du < kLeafDim; ++du) {
-                    for (int dv = 0; dv < kLeafDim; ++dv) {
+                for (int du = 0; du < kGridLeafDim; ++du) {
+                    for (int dv = 0; dv < kGridLeafDim; ++dv) {
                         int local[3];
                         local[ua] = du;
                         local[va] = dv;
                         // Lines with an active voxel still open: after two agreeing votes the third
                         // axis cannot change the majority, so it is not asked (a third fewer lookups).
                         bool any = false;
-                        for (int a = 0; a < kLeafDim && !any; ++a) {
+                        for (int a = 0; a < kGridLeafDim && !any; ++a) {
                             local[axis] = a;
                             const int off = leafOffset(local[0], local[1], local[2]);
                             any = mask.isOn(static_cast<openvdb::Index>(off)) && inside[off] < 2 && outside[off] < 2;
                         }
                         if (!any) continue;
-                        if (!scanlines.windings(axis, o[ua] + du, o[va] + dv, o[axis], kLeafDim, w)) continue;
-                        for (int a = 0; a < kLeafDim; ++a) {
+                        if (!scanlines.windings(axis, o[ua] + du, o[va] + dv, o[axis], kGridLeafDim, w)) continue;
+                        for (int a = 0; a < kGridLeafDim; ++a) {
                             local[axis] = a;
                             const int off = leafOffset(local[0], local[1], local[2]);
                             (w[a] >= 1 ? inside : outside)[off] += 1;

@@ -112,10 +112,8 @@ OrientedSurface orientSurface(const SurfaceMesh& mesh, Progress& progress) {
     std::vector<HalfEdge> edges(3 * n);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t t) {
         for (int c = 0; c < 3; ++c) {
-            const auto a = static_cast<std::uint32_t>(out.triangles[t][c]);
-            const auto b = static_cast<std::uint32_t>(out.triangles[t][(c + 1) % 3]);
-            const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-            edges[3 * t + c] = {key, static_cast<Index>(t), static_cast<std::int8_t>(c), a < b};
+            const std::int32_t a = out.triangles[t][c], b = out.triangles[t][(c + 1) % 3];
+            edges[3 * t + c] = {edgeKey(a, b), static_cast<Index>(t), static_cast<std::int8_t>(c), a < b};
         }
     });
     tbb::parallel_sort(edges.begin(), edges.end(), [](const HalfEdge& a, const HalfEdge& b) {

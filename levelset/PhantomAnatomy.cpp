@@ -1,6 +1,7 @@
 #include "levelset/PhantomAnatomy.h"
 
 #include "io/Error.h"
+#include "levelset/PhantomRandom.h"
 
 #include <tbb/parallel_for.h>
 
@@ -30,18 +31,10 @@ double smoothstep01(double t) {
     return t * t * (3 - 2 * t);
 }
 
-// splitmix64: the only source of randomness, so results do not depend on the standard library.
-std::uint64_t mix(std::uint64_t x) {
-    x += 0x9e3779b97f4a7c15ULL;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-    return x ^ (x >> 31);
-}
 // Uniform in [-1, 1], a function of (seed, tooth, parameter) only: a tooth's shape does not depend
 // on which other teeth are generated.
 double jitter(std::uint32_t seed, int unn, int param) {
-    const std::uint64_t h = mix(mix(mix(seed) ^ static_cast<std::uint64_t>(unn)) ^ static_cast<std::uint64_t>(param));
-    return static_cast<double>(h >> 11) * (2.0 / 9007199254740992.0) - 1.0;
+    return unitFromHash(splitMix64(splitMix64(splitMix64(seed) ^ static_cast<std::uint64_t>(unn)) ^ static_cast<std::uint64_t>(param)));
 }
 
 // Round cone between a (radius r1) and b (radius r2); exact distance (Quilez).

@@ -1,6 +1,7 @@
 #include "levelset/PhantomSurface.h"
 
 #include "io/Error.h"
+#include "levelset/PhantomRandom.h"
 
 #include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tools/VolumeToMesh.h>
@@ -123,15 +124,6 @@ SurfaceMesh extractLevelSetSurface(const openvdb::FloatGrid& grid) {
     return mesh;
 }
 
-namespace {
-std::uint64_t mix(std::uint64_t x) {
-    x += 0x9e3779b97f4a7c15ULL;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-    return x ^ (x >> 31);
-}
-double unit(std::uint64_t h) { return static_cast<double>(h >> 11) * (2.0 / 9007199254740992.0) - 1.0; }
-}  // namespace
 
 void jitterTangentially(SurfaceMesh& mesh, double amplitudeMm, std::uint64_t seed) {
     auto& V = mesh.vertices;
@@ -152,8 +144,8 @@ void jitterTangentially(SurfaceMesh& mesh, double amplitudeMm, std::uint64_t see
         for (std::int32_t k = start[i]; k < start[i + 1]; ++k) n += normal(F[static_cast<std::size_t>(inc[k])]);
         if (n.squaredNorm() == 0) continue;
         n.normalize();
-        const std::uint64_t h = mix(seed ^ mix(i));
-        Vec3 r(unit(h), unit(mix(h + 1)), unit(mix(h + 2)));
+        const std::uint64_t h = splitMix64(seed ^ splitMix64(i));
+        Vec3 r(unitFromHash(h), unitFromHash(splitMix64(h + 1)), unitFromHash(splitMix64(h + 2)));
         r -= r.dot(n) * n;
         const Vec3 old = V[i];
         std::vector<Vec3> before;

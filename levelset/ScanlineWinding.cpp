@@ -28,7 +28,7 @@ inline bool ownsBoundary(double du, double dv) { return dv < 0.0 || (dv == 0.0 &
 
 // Calls emit(u, v, pos, dir) for every line of the axis that the triangle crosses.
 template <typename Emit>
-void rasterise(const std::vector<Vec3>& vx, const Tri& tri, int axis, Emit&& emit) {
+void rasteriseCrossings(const std::vector<Vec3>& vx, const Tri& tri, int axis, Emit&& emit) {
     const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
     P2 p[3];
     double w[3];
@@ -98,7 +98,7 @@ ScanlineWinding::ScanlineWinding(const std::vector<Vec3>& vx, const std::vector<
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
             progress.checkCancelled();
             for (std::size_t t = r.begin(); t < r.end(); ++t)
-                rasterise(vx, triangles[t], axis, [&](int u, int v, double, int) {
+                rasteriseCrossings(vx, triangles[t], axis, [&](int u, int v, double, int) {
                     cursor[lineOf(u, v)].fetch_add(1, std::memory_order_relaxed);
                 });
         });
@@ -115,7 +115,7 @@ ScanlineWinding::ScanlineWinding(const std::vector<Vec3>& vx, const std::vector<
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
             progress.checkCancelled();
             for (std::size_t t = r.begin(); t < r.end(); ++t)
-                rasterise(vx, triangles[t], axis, [&](int u, int v, double pos, int dir) {
+                rasteriseCrossings(vx, triangles[t], axis, [&](int u, int v, double pos, int dir) {
                     const std::uint32_t slot = cursor[lineOf(u, v)].fetch_add(1, std::memory_order_relaxed);
                     ax.crossings[slot] = {static_cast<float>(pos), dir};
                 });
