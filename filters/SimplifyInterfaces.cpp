@@ -514,9 +514,17 @@ private:
             const double oldCos = smallestAngleCosine(oldP[0], oldP[1], oldP[2]);
             const double newCos = smallestAngleCosine(newP[0], newP[1], newP[2]);
             if (newCos > std::max(cosMinAngle_, oldCos)) return false;
+            // A new edge of this triangle's interface: v-x, unless x is the apex of a removed
+            // triangle of the same interface (then the edge was already one of its edges). An
+            // apex across another interface does not count: at a junction curve the collapse
+            // can hand a long tooth/PDL edge to a cap triangle (0.10 mm cap edges on the mandible).
             const double maxEdge = rule(t).maxEdgeMm;
-            for (std::int32_t x : {a, b})
-                if (!isApex(x) && (pos_[std::size_t(x)] - pv).norm() > maxEdge) return false;
+            for (std::int32_t x : {a, b}) {
+                bool existing = false;
+                for (int k = 0; k < uv->n && !existing; ++k)
+                    existing = apex[k] == x && pair_[std::size_t(uv->tris[k])] == pair_[std::size_t(t)];
+                if (!existing && (pos_[std::size_t(x)] - pv).norm() > maxEdge) return false;
+            }
         }
 
         // Wedges: no region may come to span less than minWedgeDeg around an edge (RegionWedges.h),

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Interface extraction + simplification (`jawmesh surface ... --json`, issue #4) on a carved label
+# field, with `jawmesh run`'s PDL edge default (0.8 mm; the command's own default is 0.4). Runs RUNS
+# times (default 3, at least 3 for a median) and prints Markdown: the median extraction,
+# simplification and total seconds, the process's peak resident memory, then the triangles per
+# interface kind, the largest tracked error and the smallest angle of the last run.
+# Usage: bench/surface.sh <carve-dir> [path/to/jawmesh] [runs]
+#   carve-dir: a jaw folder of `jawmesh carve` or of `jawmesh run --write-levelsets` (e.g. the
+#   shared mandible: jawmesh run ../shared/data/openmandible -o out --jaw mandible --write-levelsets,
+#   then out/mandible)
+# Environment: THREADS (default 0 = all), PDL_MAX_EDGE (default 0.8).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+carve="${1:?usage: bench/surface.sh <carve-dir> [jawmesh] [runs]}"
+jawmesh="${2:-$here/../build/cli/jawmesh}"
+runs="${3:-3}"
+threads="${THREADS:-0}"
+[ -x "$jawmesh" ] || { echo "no jawmesh executable at $jawmesh (build it, or pass its path)" >&2; exit 1; }
+[ -e "$carve/labels.vdb" ] || [ -e "$carve/levelsets/labels.vdb" ] || { echo "no label field in $carve" >&2; exit 1; }
+[ "$runs" -ge 1 ] || { echo "runs must be >= 1" >&2; exit 1; }
+command -v python3 >/dev/null || { echo "python3 is needed to read the --json output" >&2; exit 1; }
+out="$(mktemp -d)"
+trap 'rm -rf "$out"' EXIT
+results="$out/results.jsonl"
+: > "$results"
+for run in $(seq 1 "$runs"); do
+  "$jawmesh" --quiet --threads "$threads" surface "$carve" -o "$out/run$run" \
+    --pdl-max-edge "${PDL_MAX_EDGE:-0.8}" --json | tail -1 >> "$results"
+  rm -rf "$out/run$run"
+done
+python3 - "$results" "$(nproc)" "$(cut -d' ' -f1-3 /proc/loadavg)" <<'PY'
+import json, statistics, sys
+rows = [json.loads(l) for l in open(sys.argv[1])]
+med = statistics.median
+print(f"`jawmesh surface`, median of {len(rows)} runs, {sys.argv[2]} cores, load at the end {sys.argv[3]}:\n")
+print("| extraction s | simplification s | extraction + simplification s | total s | peak MB |")
+print("|---:|---:|---:|---:|---:|")
+s = [r["seconds"] for r in rows]
+print(f"| {med(x['extract'] for x in s):.1f} | {med(x['simplify'] for x in s):.1f} | "
+      f"{med(x['extract'] + x['simplify'] for x in s):.1f} | {med(x['total'] for x in s):.1f} | "
+      f"{med(r['peak_memory_bytes'] for r in rows) / 2**20:.0f} |")
+last = rows[-1]["simplify"]
+print(f"\n{rows[-1]['triangles']} triangles: {last['triangles_per_kind']}; max error {last['max_error_mm']:.4f} mm "
+      f"({last['max_error_near_teeth_mm']:.4f} near the teeth), min angle {last['min_angle_deg']:.1f} deg")
+PY
