@@ -560,8 +560,8 @@ private:
     /// or with all four nodes on them: TetGen under -Y may not put a node there itself.
     /// Candidates: the centroid of each interface face of t and the projection of t's opposite
     /// node on it (when inside), the midpoint of each interface edge and its point closest to the
-    /// opposite edge. The best candidate is made when it raises the objective over the tets it
-    /// replaces and t's own score.
+    /// opposite edge. The best candidate is made when it improves the objective over the tets it
+    /// replaces.
     bool insertOnInterfaceAround(std::int32_t t, SliverStats& st) {
         const Tet e = m_.tets[std::size_t(t)];
         struct Candidate {
