@@ -12,12 +12,12 @@ voxel="${2:-0.05}"
 runs="${3:-3}"
 case_dir="${JAWMESH_DATA:-$here/../../shared/data}/openmandible"
 threads="${THREADS:-0}"
-[ -x "$jawmesh" ] || { echo "no jawmesh executable at $jawmesh (build it, or pass its path)" >&2; exit 1; }
-[ -d "$case_dir/input" ] || { echo "no shared data at $case_dir" >&2; exit 1; }
-[ "$runs" -ge 1 ] || { echo "runs must be >= 1" >&2; exit 1; }
-command -v python3 >/dev/null || { echo "python3 is needed to read the --json output" >&2; exit 1; }
-out="$(mktemp -d)"
-trap 'rm -rf "$out"' EXIT
+source "$here/common.sh"
+require_jawmesh "$jawmesh"
+require_folder "$case_dir/input" "shared data"
+require_runs "$runs"
+require_python3
+make_work_dir out
 
 results="$out/results.jsonl"
 : > "$results"

@@ -14,12 +14,12 @@ voxel="${2:-0.05}"
 runs="${3:-3}"
 data="${JAWMESH_DATA:-$here/../../shared/data}/openmandible/input/mandible"
 threads="${THREADS:-0}"
-[ -x "$jawmesh" ] || { echo "no jawmesh executable at $jawmesh (build it, or pass its path)" >&2; exit 1; }
-[ -d "$data" ] || { echo "no shared data at $data" >&2; exit 1; }
-[ -x /usr/bin/time ] || { echo "/usr/bin/time is needed (apt-get install time)" >&2; exit 1; }
-command -v python3 >/dev/null || { echo "python3 is needed to read the --json output" >&2; exit 1; }
-out="$(mktemp -d)"
-trap 'rm -rf "$out"' EXIT
+source "$here/common.sh"
+require_jawmesh "$jawmesh"
+require_folder "$data" "shared data"
+require_time
+require_python3
+make_work_dir out
 
 files=("$data/bone/mandible.stl")
 for f in "$data"/teeth/tooth_*.stl; do files+=("$f"); done

@@ -12,12 +12,12 @@ jawmesh="${1:-$here/../build/cli/jawmesh}"
 runs="${2:-3}"
 case_dir="${JAWMESH_DATA:-$here/../../shared/data}/openmandible"
 threads="${THREADS:-0}"
-[ -x "$jawmesh" ] || { echo "no jawmesh executable at $jawmesh (build it, or pass its path)" >&2; exit 1; }
-[ -d "$case_dir/input" ] || { echo "no shared data at $case_dir" >&2; exit 1; }
-[ "$runs" -ge 1 ] || { echo "runs must be >= 1" >&2; exit 1; }
-[ -x /usr/bin/time ] || { echo "/usr/bin/time (Debian package time) is needed for peak memory" >&2; exit 1; }
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$here/common.sh"
+require_jawmesh "$jawmesh"
+require_folder "$case_dir/input" "shared data"
+require_runs "$runs"
+require_time
+make_work_dir work
 for run in $(seq 1 "$runs"); do
   rm -rf "$work/out"
   /usr/bin/time -f '{"wall": %e, "cpu": %U, "sys": %S, "max_rss_kb": %M}' -o "$work/time$run.json" \

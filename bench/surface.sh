@@ -15,12 +15,12 @@ carve="${1:?usage: bench/surface.sh <carve-dir> [jawmesh] [runs]}"
 jawmesh="${2:-$here/../build/cli/jawmesh}"
 runs="${3:-3}"
 threads="${THREADS:-0}"
-[ -x "$jawmesh" ] || { echo "no jawmesh executable at $jawmesh (build it, or pass its path)" >&2; exit 1; }
+source "$here/common.sh"
+require_jawmesh "$jawmesh"
 [ -e "$carve/labels.vdb" ] || [ -e "$carve/levelsets/labels.vdb" ] || { echo "no label field in $carve" >&2; exit 1; }
-[ "$runs" -ge 1 ] || { echo "runs must be >= 1" >&2; exit 1; }
-command -v python3 >/dev/null || { echo "python3 is needed to read the --json output" >&2; exit 1; }
-out="$(mktemp -d)"
-trap 'rm -rf "$out"' EXIT
+require_runs "$runs"
+require_python3
+make_work_dir out
 results="$out/results.jsonl"
 : > "$results"
 for run in $(seq 1 "$runs"); do
