@@ -592,8 +592,8 @@ private:
         for (int i = 0; i < 4; ++i)
             for (int j = i + 1; j < 4; ++j) {
                 const std::int32_t a = e[std::size_t(i)], b = e[std::size_t(j)];
-                const std::vector<std::int32_t> ring = tetsWith(a, b);
                 if (!interiorRing(a, b, m_.labels[std::size_t(t)]).empty()) continue;  // not on an interface
+                const std::vector<std::int32_t> ring = tetsWith(a, b);
                 std::array<std::int32_t, 3> key{std::min(a, b), std::max(a, b), -1};
                 candidates.push_back({0.5 * (P(a) + P(b)), ring, key});
                 // the point of a-b closest to the opposite edge c-d
