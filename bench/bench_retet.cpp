@@ -3,7 +3,8 @@
 // from a run's volumetric .msh, so sizing and quality options can be compared on real output
 // (e.g. the shared mandible) without repeating extraction and simplification.
 // Usage: bench_retet <mesh.msh> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
-// max (edge mm), O (optimisation level), repair (attempts), improve (0/1). BENCH_WRITE=<file.msh> writes the mesh.
+// max (edge mm), O (optimisation level), repair (attempts), improve (0/1), Y (0: TetGen may split interface triangles).
+// BENCH_WRITE=<file.msh> writes the mesh.
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
 #include "io/GmshWriter.h"
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
         else if (k == "O") o.optimizationLevel = int(v);
         else if (k == "repair") o.repairAttempts = int(v);
         else if (k == "improve") o.improveSlivers = v != 0;
+        else if (k == "Y") o.preserveBoundary = v != 0;
         else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
     }
     const jawmesh::TetMesh in = jawmesh::readGmsh(argv[1]);

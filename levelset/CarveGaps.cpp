@@ -56,7 +56,8 @@ struct ToothWork {
     Label toothL = 0, pdlL = 0;
     FloatGrid::ConstPtr T;   ///< tooth distance: input band, plus exterior distances where bone is
                              ///< within gap-bridging reach; +-far elsewhere outside the band
-    FloatGrid::Ptr X;        ///< bone distance outside the bone band, where this tooth is within reach
+    FloatGrid::Ptr X;        ///< bone distance off the bone band where this tooth is within reach:
+                             ///< outside (gaps) and inside down to boneShiftMax (overlaps)
     CoordBBox box;           ///< index bounds of T's active voxels
     bool hasRoot = false;    ///< axis, cervical and apical heights found (fitRootAxis)
     Vec3d origin{0, 0, 0}, axis{0, 0, 1};  ///< axis points from the root to the crown
@@ -80,6 +81,9 @@ double thicknessAt(const ToothWork& t, const Params& P, double h) {
 /// 0.15 mm rather than 0.2, which leaves room for the input's overlaps within #5's 0.25 mm.
 constexpr double kApexErosionShare = 0.5;
 
+/// Thinnest PDL an overlap of root and bone may leave, as a share of the thickness t (evalLocal).
+constexpr double kMinPdlShare = 0.5;
+
 double erosionShare(const ToothWork& t, const Params& P, double h) {
     if (!t.hasRoot || P.apexTaper <= 0) return 1.0;
     const double s = std::clamp((h - t.hApex) / P.apexTaper, 0.0, 1.0);
@@ -95,6 +99,9 @@ inline double signedBone(FloatAcc& B, FloatAcc& X, const Params& P, const Coord&
     if (B.probeValue(c, v)) return v;  // band: exact, even at |v| = background
     return v > 0 ? P.far : v;
 }
+
+/// Whether signedBone is a distance at c (X or the band), not a clamp without a direction.
+inline bool boneKnown(FloatAcc& B, FloatAcc& X, const Coord& c) { return X.isValueOn(c) || B.isValueOn(c); }
 
 /// The next double below x: turns "x <= 0" into the strict test "below(x) < 0".
 inline double below(double x) { return std::nextafter(x, -std::numeric_limits<double>::infinity()); }
@@ -127,7 +134,9 @@ Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& X, F
                        signedBone(B, X, P, c + dz) - signedBone(B, X, P, c - dz));
         const double lT = gT.length(), lB = gB.length();
         // A clamped field (outside its band) has no direction: treat as not facing.
-        const double dot = (lT > 1e-3 * P.voxel && lB > 1e-3 * P.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
+        const bool bKnown = boneKnown(B, X, c + dx) && boneKnown(B, X, c - dx) && boneKnown(B, X, c + dy) &&
+                            boneKnown(B, X, c - dy) && boneKnown(B, X, c + dz) && boneKnown(B, X, c - dz);
+        const double dot = (bKnown && lT > 1e-3 * P.voxel && lB > 1e-3 * P.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
         gap = std::max(gap, (dot + kFacingCos) * P.gapBridge);
         // A bridged gap wider than w + boneShiftMax: the PDL moves out to meet the bone where it
         // has moved boneShiftMax, eroding the root less (and, past that, the PDL thickens).
@@ -135,6 +144,11 @@ Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& X, F
             w = g - P.boneShiftMax;
             e = std::max(0.0, th - w);
         }
+        // The root overlapping the bone by more than boneShiftMax - w (g < 0): the bone surface
+        // moves boneShiftMax, the PDL thins (down to kMinPdlShare of t, past which the bone
+        // moves farther); the root keeps its erosion e.
+        else if (gap < 0 && w - g > P.boneShiftMax)
+            w = std::max(g + P.boneShiftMax, kMinPdlShare * th - e);
     }
     const double socket = std::min(b - e, gap);  // < 0: in the socket of this tooth
     // Exact ties (input bands sampled exactly at T = -e, T = w or on the cap) must land in exactly
@@ -285,6 +299,25 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     auto ta = T->getAccessor();
     for (auto it = Tx->tree().cbeginValueOn(); it; ++it) ta.setValue(it.getCoord(), *it);
     t.box = T->evalActiveVoxelBoundingBox();
+    // Overlaps of root and bone (evalLocal) need B inside the bone down to boneShiftMax, past its
+    // band, and its gradient a voxel farther, but only around band voxels where the overlap
+    // (T + B, with B clamped: an upper bound) is already deeper than the least one the rule acts
+    // on (boneShiftMax - w, w at most t - e / 2 at the apex), two voxels beyond for the gradient.
+    const double tMin = P.profile ? std::min({P.profile->cervical, P.profile->midRoot, P.profile->apical}) : P.uniformThickness;
+    const double tMax = P.profile ? std::max({P.profile->cervical, P.profile->midRoot, P.profile->apical}) : P.uniformThickness;
+    const double gTrigger = tMax - kApexErosionShare * P.ratio * tMin - P.boneShiftMax;
+    openvdb::MaskTree overlap(false);
+    {
+        auto ba = bone.getConstAccessor();
+        auto oa = openvdb::tree::ValueAccessor<openvdb::MaskTree>(overlap);
+        for (auto it = tooth.tree().cbeginValueOn(); it; ++it)
+            if (*it + ba.getValue(it.getCoord()) < gTrigger) oa.setValueOn(it.getCoord());
+    }
+    if (overlap.empty()) return;
+    openvdb::tools::dilateActiveValues(overlap, 2, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
+    const auto inside = extendInteriorDistance(bone, overlap, P.boneShiftMax + 3 * P.voxel);
+    auto xa = t.X->getAccessor();
+    for (auto it = inside->tree().cbeginValueOn(); it; ++it) xa.setValue(it.getCoord(), *it);
 }
 
 void validate(const CarveOptions& o, const FloatGrid& bone, const std::map<int, FloatGrid::ConstPtr>& teeth) {

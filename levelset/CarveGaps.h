@@ -12,6 +12,12 @@
 //    Wide gaps: where T + B = g exceeds w + boneShiftMax (default 0.2 mm), the PDL moves out to
 //    w = g - boneShiftMax and e = max(0, t - w): the bone surface moves at most boneShiftMax,
 //    the root is eroded less, and only past g = t + boneShiftMax does the PDL get thicker than t.
+//  * Overlaps: where the root overlaps the bone (T + B = g < 0, facing), the bone surface would
+//    move w - g. Past boneShiftMax the PDL's outer face stops at B = -boneShiftMax
+//    (w = g + boneShiftMax) and the PDL is thinner than t there, down to t / 2; the root keeps
+//    its erosion e, so neither surface moves more than the segmentation's overlap asks. (Bone
+//    distances are extended boneShiftMax + 3 voxels into the bone near each root: an overlap
+//    deeper than that, or a root buried with no bone surface facing it, keeps the rules above.)
 //  * Apex: e falls linearly to e / 2 over the last apexTaper mm (default 1) of the root along the
 //    tooth's long axis (w = t - e takes the rest), so a pointed apex is pulled back by no more
 //    than about e (erosion moves a tip of half angle a by e / sin a).
@@ -56,7 +62,7 @@ struct CarveOptions {
     std::optional<PdlProfile> profile;  ///< thickness along the root instead of a uniform value
     double clearanceVoxels = 1.0;       ///< gap between different teeth / PDLs, voxels
     double gapBridgeMm = 0.5;           ///< widest root-socket gap bridged (see file comment)
-    double boneShiftMaxMm = 0.2;        ///< farthest a bridged gap moves the bone surface (file comment)
+    double boneShiftMaxMm = 0.2;        ///< farthest a bridged gap or an overlap moves the bone surface (file comment)
     double apexTaperMm = 1.0;           ///< root erosion falls to half over this length to the apex; 0 = off
     double capExclusionMm = 0.3;        ///< thickness statistics ignore points this close to the outside
     std::map<int, ToothAxes> axes;      ///< optional tooth axes (long axis for the profile)

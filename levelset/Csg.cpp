@@ -249,4 +249,11 @@ openvdb::FloatGrid::Ptr extendExteriorDistance(const openvdb::FloatGrid& grid, c
     return propagateClosestPoints(grid, region, maxDistanceMm, bg - 2.0001 * voxel, bg - 1.0001 * voxel, +1, false);
 }
 
+openvdb::FloatGrid::Ptr extendInteriorDistance(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
+                                               double maxDistanceMm) {
+    const double voxel = uniformVoxelSizeMm(grid);
+    const double bg = bandHalfWidthMm(grid);
+    return propagateClosestPoints(grid, region, maxDistanceMm, bg - 2.0001 * voxel, bg - 1.0001 * voxel, -1, false);
+}
+
 }  // namespace jawmesh

@@ -78,6 +78,13 @@ openvdb::FloatGrid::Ptr openLevelSet(const openvdb::FloatGrid& grid, double radi
 openvdb::FloatGrid::Ptr extendExteriorDistance(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
                                                double maxDistanceMm);
 
+/// The same inside the surface: for every voxel of `region` inside the surface of `grid`, off its
+/// band and reachable from it through region voxels, minus the distance (mm) to the zero set, down
+/// to -maxDistanceMm (only the active voxels hold values; the background is +maxDistanceMm). Same
+/// method, errors, determinism and cost as extendExteriorDistance.
+openvdb::FloatGrid::Ptr extendInteriorDistance(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
+                                               double maxDistanceMm);
+
 /// Half width of the band of a level set in mm (its background value). Throws Error when the grid
 /// has a non-positive background (not a level set).
 double bandHalfWidthMm(const openvdb::FloatGrid& grid);

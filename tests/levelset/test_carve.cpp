@@ -317,6 +317,40 @@ TEST(Carve, WideGapMovesTheBoneAtMostTheBoneShift) {
     EXPECT_NEAR(toothSummary(s, 24).thickness.mean, 0.25, 0.015);
 }
 
+TEST(Carve, RootOverlappingTheBoneMovesTheBoneAtMostTheBoneShift) {
+    // One tooth (r = 1.2) in a socket narrower than its root, PDL 0.3 mm (e = w = 0.15): the input
+    // root overlaps the bone by 0.15 mm, then by 0.25 mm. Without the overlap rule the bone surface
+    // would move overlap + w = 0.3 / 0.4 mm. With it the PDL's outer face stops 0.2 mm inside the
+    // input bone (at r + 0.05), so the PDL is 0.2 mm thick; at 0.25 mm it stops at its floor
+    // (t / 2 = 0.15 mm, outer face on the input root). The root keeps its 0.15 mm erosion.
+    const double r = 1.2;
+    const Vec3d lo(-3, -3, -9), hi(3, 3, 0);
+    const ToothShape tooth{24, 0.0, -5.0, 3.0, r, 0.0};
+    std::map<int, openvdb::FloatGrid::ConstPtr> teeth{
+        {24, sample([&](const Vec3d& p) { return toothSdf(tooth, p); }, Vec3d(-r, -r, -5 - r), Vec3d(r, r, 3 + r))}};
+    CarveOptions o;
+    o.pdlThicknessMm = 0.3;
+    const auto carve = [&](double overlap, CarveSummary& s) {
+        const auto bone = sample([&](const Vec3d& p) { return std::max(boxSdf(p, lo, hi), -(toothSdf(tooth, p) + overlap)); },
+                                 lo, hi);
+        return carveJaw(Jaw::Mandible, *bone, teeth, o, s);
+    };
+    // Voxel centres (every 0.05 mm) along +y at mid-root.
+    const auto at = [&](const LabelField& f, double d) { return labelAt(f, Vec3d(0.0, d, -2.5)); };
+    CarveSummary s;
+    const auto f15 = carve(0.15, s);  // input bone surface at r - 0.15
+    EXPECT_EQ(at(f15, r - 0.2), toothLabel(24));
+    EXPECT_EQ(at(f15, r - 0.1), pdlLabel(24));
+    EXPECT_EQ(at(f15, r), pdlLabel(24));
+    EXPECT_EQ(at(f15, r + 0.1), boneLabel(Jaw::Mandible));  // 0.25 mm inside the input bone
+    EXPECT_NEAR(toothSummary(s, 24).thickness.mean, 0.2, 0.015);
+    const auto f25 = carve(0.25, s);  // input bone surface at r - 0.25
+    EXPECT_EQ(at(f25, r - 0.2), toothLabel(24));
+    EXPECT_EQ(at(f25, r - 0.1), pdlLabel(24));
+    EXPECT_EQ(at(f25, r + 0.05), boneLabel(Jaw::Mandible));
+    EXPECT_NEAR(toothSummary(s, 24).thickness.mean, 0.15, 0.015);
+}
+
 TEST(Carve, RejectsBadOptions) {
     const auto& j = syntheticJaw();
     CarveSummary s;
