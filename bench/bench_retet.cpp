@@ -3,7 +3,8 @@
 // from a run's volumetric .msh, so sizing and quality options can be compared on real output
 // (e.g. the shared mandible) without repeating extraction and simplification.
 // Usage: bench_retet <mesh.msh> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
-// max (edge mm), O (optimisation level), repair (attempts), improve (0/1), Y (0: TetGen may split interface triangles).
+// max (edge mm), O (optimisation level), repair (attempts), improve (0/1), Y (0: TetGen may split interface triangles),
+// refine (rounds of local refinement, tet/RefineComplex.h).
 // BENCH_WRITE=<file.msh> writes the mesh.
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
         else if (k == "repair") o.repairAttempts = int(v);
         else if (k == "improve") o.improveSlivers = v != 0;
         else if (k == "Y") o.preserveBoundary = v != 0;
+        else if (k == "refine") o.refineRounds = int(v);
         else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
     }
     const jawmesh::TetMesh in = jawmesh::readGmsh(argv[1]);
@@ -61,9 +63,10 @@ int main(int argc, char** argv) {
     std::map<std::string, std::size_t> perKind;
     for (jawmesh::Label l : out.labels) perKind[jawmesh::labelKind(l) == jawmesh::LabelKind::Bone ? "bone" : jawmesh::labelKind(l) == jawmesh::LabelKind::Tooth ? "tooth" : "pdl"]++;
     std::printf("| %s | %zu nodes, %zu tets (bone %zu, tooth %zu, pdl %zu) | min dihedral %.2f deg, %zu below %.0f (TetGen %zu) | "
-                "%s, %d attempts | %.0f s | violations %zu |\n",
+                "%s, %d attempts, %d refinement rounds (%zu edges split) | %.0f s | violations %zu |\n",
                 argv[1], out.nodes.size(), out.tets.size(), perKind["bone"], perKind["tooth"], perKind["pdl"], s.minDihedralDeg,
-                s.belowMinDihedral, o.minDihedralDeg, s.slivers.badBefore, s.switches.c_str(), s.attempts, sec, r.violationCount());
+                s.belowMinDihedral, o.minDihedralDeg, s.slivers.badBefore, s.switches.c_str(), s.attempts, s.refineRounds, s.refinedEdges, sec,
+                r.violationCount());
     // BENCH_WRITE=<file.msh>: keep the mesh (with improve=0, the raw TetGen output that
     // bench_improve_slivers can then be measured on without running TetGen again)
     if (const char* path = std::getenv("BENCH_WRITE")) jawmesh::writeGmsh(out, path);

@@ -2,12 +2,19 @@
 
 #include "io/Error.h"
 #include "tet/ElementQuality.h"
+#include "tet/RefineComplex.h"
 #include "tet/TetFaceAdjacency.h"
 
 #include <tetgen.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -202,6 +209,123 @@ RawMesh runTetgen(const InterfaceComplex& plc, const TetOptions& o, const Attemp
     return raw;
 }
 
+namespace pipe_io {
+
+template <class T>
+void writeAll(int fd, const T* data, std::size_t count) {
+    const char* p = reinterpret_cast<const char*>(data);
+    std::size_t left = count * sizeof(T);
+    while (left > 0) {
+        const ssize_t n = ::write(fd, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) ::_exit(3);
+        p += n;
+        left -= std::size_t(n);
+    }
+}
+
+/// Reads the whole of what the child wrote (until it closes its end).
+std::vector<char> readAll(int fd) {
+    std::vector<char> out;
+    char buf[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(fd, buf, sizeof buf);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        out.insert(out.end(), buf, buf + n);
+    }
+    return out;
+}
+
+template <class T>
+void take(const std::vector<char>& in, std::size_t& at, T* data, std::size_t count) {
+    const std::size_t bytes = count * sizeof(T);
+    if (at + bytes > in.size()) throw Error(kWhat, "TetGen's child process sent a truncated mesh");
+    std::memcpy(static_cast<void*>(data), in.data() + at, bytes);  // trivially copyable data (Vec3 included)
+    at += bytes;
+}
+
+}  // namespace pipe_io
+
+/// runTetgen in a child process: TetGen 1.5.0 aborts on some inputs (failed assertions in its
+/// facet recovery, seen on a locally refined mandible surface) where it should throw, and an
+/// abort must not take the run down. The child (a fork: TetGen is serial, no thread pool is used
+/// there) sends the raw mesh back through a pipe; a child that dies or fails gives an Error.
+RawMesh runTetgenIsolated(const InterfaceComplex& plc, const TetOptions& o, const Attempt& attempt,
+                          std::uint64_t& childPeakBytes) {
+    int fds[2];
+    if (::pipe(fds) != 0) throw Error(kWhat, "cannot create a pipe for TetGen's child process");
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+        ::close(fds[0]);
+        ::close(fds[1]);
+        throw Error(kWhat, "cannot fork TetGen's child process");
+    }
+    if (pid == 0) {
+        ::close(fds[0]);
+        char status = 0;
+        std::string message;
+        RawMesh raw;
+        try {
+            raw = runTetgen(plc, o, attempt);
+        } catch (const std::exception& e) {
+            status = 1;
+            message = e.what();
+        }
+        pipe_io::writeAll(fds[1], &status, 1);
+        if (status) {
+            const std::uint64_t n = message.size();
+            pipe_io::writeAll(fds[1], &n, 1);
+            pipe_io::writeAll(fds[1], message.data(), message.size());
+        } else {
+            const std::uint64_t counts[3] = {raw.mesh.nodes.size(), raw.mesh.tets.size(), raw.facets.size()};
+            pipe_io::writeAll(fds[1], counts, 3);
+            pipe_io::writeAll(fds[1], raw.mesh.nodes.data(), raw.mesh.nodes.size());
+            pipe_io::writeAll(fds[1], raw.mesh.tets.data(), raw.mesh.tets.size());
+            pipe_io::writeAll(fds[1], raw.mesh.labels.data(), raw.mesh.labels.size());
+            pipe_io::writeAll(fds[1], raw.facets.data(), raw.facets.size());
+        }
+        ::close(fds[1]);
+        ::_exit(0);  // no destructors or atexit handlers of the parent's state
+    }
+    ::close(fds[1]);
+    const std::vector<char> in = pipe_io::readAll(fds[0]);
+    ::close(fds[0]);
+    int wstatus = 0;
+    struct rusage usage {};
+    while (::wait4(pid, &wstatus, 0, &usage) < 0 && errno == EINTR) {
+    }
+    childPeakBytes = std::max(childPeakBytes, std::uint64_t(usage.ru_maxrss) * 1024u);
+    if (WIFSIGNALED(wstatus))
+        throw Error(kWhat, "TetGen died (signal " + std::to_string(WTERMSIG(wstatus)) + ", " + strsignal(WTERMSIG(wstatus)) +
+                               ") with switches '" + attempt.switches + "'");
+    if (!WIFEXITED(wstatus) || WEXITSTATUS(wstatus) != 0 || in.empty())
+        throw Error(kWhat, "TetGen's child process failed with switches '" + attempt.switches + "'");
+    std::size_t at = 0;
+    char status = 0;
+    pipe_io::take(in, at, &status, 1);
+    if (status) {
+        std::uint64_t n = 0;
+        pipe_io::take(in, at, &n, 1);
+        std::string message(n, '\0');
+        pipe_io::take(in, at, message.data(), n);
+        throw Error(message);
+    }
+    std::uint64_t counts[3];
+    pipe_io::take(in, at, counts, 3);
+    RawMesh raw;
+    raw.mesh.nodes.resize(counts[0]);
+    raw.mesh.tets.resize(counts[1]);
+    raw.mesh.labels.resize(counts[1]);
+    raw.facets.resize(counts[2]);
+    pipe_io::take(in, at, raw.mesh.nodes.data(), counts[0]);
+    pipe_io::take(in, at, raw.mesh.tets.data(), counts[1]);
+    pipe_io::take(in, at, raw.mesh.labels.data(), counts[1]);
+    pipe_io::take(in, at, raw.facets.data(), counts[2]);
+    return raw;
+}
+
 /// With the boundary preserved (-Y) every input triangle is a tet face, so the tets split into
 /// components separated only by input triangles (or the pieces of one TetGen had to split), and
 /// each whole input triangle says which label lies on
@@ -325,22 +449,15 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
     TetMesh best;
     bool haveBest = false;
     QualityStats bestQuality;
+    std::size_t bestAttempt = 0;
     const auto start = std::chrono::steady_clock::now();
-    for (std::size_t i = 0; i < runs; ++i) {
-        progress.checkCancelled();
-        stage.update(static_cast<double>(i) / static_cast<double>(runs));
-        RawMesh raw;
+    // One TetGen run on `complex` (in a child process when isolated) with the improver after it;
+    // kept when better than the best so far (true). Throws what TetGen or the labelling throws.
+    const auto attempt = [&](const InterfaceComplex& complex, std::size_t i, bool lastResort, bool isolated) {
         ++st.attempts;
-        try {
-            raw = runTetgen(plc, options, ladder[i]);
-            if (options.preserveBoundary) labelFromSides(plc, raw.facets, raw.mesh);
-        } catch (const Error& e) {
-            // A repair run exists only to improve angles: when it fails (TetGen's stronger
-            // optimisation has lost a facet on a valid surface), the mesh already made stands.
-            if (!haveBest) throw;
-            st.failedAttempts.push_back(ladder[i].switches + ": " + e.what());
-            continue;
-        }
+        RawMesh raw = isolated ? runTetgenIsolated(complex, options, ladder[i], st.childPeakMemoryBytes)
+                               : runTetgen(complex, options, ladder[i]);
+        if (options.preserveBoundary) labelFromSides(complex, raw.facets, raw.mesh);
         const std::size_t removed = keepLabeled(raw.mesh);
         if (raw.mesh.tets.empty()) throw Error(kWhat, "no tetrahedron received a label: are the seeds inside their regions?");
         SliverStats slivers;
@@ -350,24 +467,55 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
             improveSlivers(raw.mesh, so, &slivers);
         }
         const QualityStats q = measureQuality(raw.mesh, options.minDihedralDeg);
-        // The last attempt (radius-edge 1.5 with TetGen's own dihedral bound) makes far more tets
-        // (the mandible: 1.3 M): it is kept only when it meets the bound the others missed.
-        const bool lastResort = i > 0 && i + 1 == ladder.size();
         const bool better =
             !haveBest ||
             (lastResort ? q.belowDihedralThreshold == 0 && bestQuality.belowDihedralThreshold > 0
                         : q.belowDihedralThreshold < bestQuality.belowDihedralThreshold ||
                               (q.belowDihedralThreshold == bestQuality.belowDihedralThreshold &&
                                q.minDihedralDeg > bestQuality.minDihedralDeg));
-        if (better) {
-            best = std::move(raw.mesh);
-            bestQuality = q;
-            haveBest = true;
-            st.switches = ladder[i].switches + (ladder[i].optMaxDihedral != 165.0 ? " (optmaxdihedral " + fmt(ladder[i].optMaxDihedral) + ")" : "");
-            st.outsideTetsRemoved = removed;
-            st.slivers = slivers;
+        if (!better) return false;
+        best = std::move(raw.mesh);
+        bestQuality = q;
+        haveBest = true;
+        bestAttempt = i;
+        st.switches = ladder[i].switches + (ladder[i].optMaxDihedral != 165.0 ? " (optmaxdihedral " + fmt(ladder[i].optMaxDihedral) + ")" : "");
+        st.outsideTetsRemoved = removed;
+        st.slivers = slivers;
+        return true;
+    };
+    for (std::size_t i = 0; i < runs && !(haveBest && bestQuality.belowDihedralThreshold == 0); ++i) {
+        progress.checkCancelled();
+        stage.update(static_cast<double>(i) / static_cast<double>(runs + std::size_t(std::max(0, options.refineRounds))));
+        try {
+            // The last attempt (radius-edge 1.5 with TetGen's own dihedral bound) makes far more
+            // tets (the mandible: 1.3 M): it is kept only when it meets the bound the others missed.
+            attempt(plc, i, i > 0 && i + 1 == ladder.size(), false);
+        } catch (const Error& e) {
+            // A repair run exists only to improve angles: when it fails (TetGen's stronger
+            // optimisation has lost a facet on a valid surface), the mesh already made stands.
+            if (!haveBest) throw;
+            st.failedAttempts.push_back(ladder[i].switches + ": " + e.what());
         }
-        if (bestQuality.belowDihedralThreshold == 0) break;
+    }
+    // Refinement rounds (RefineComplex.h): the surface edges around the tets still under the bound
+    // are split and the kept attempt runs again, while that leaves fewer such tets.
+    InterfaceComplex refined;
+    for (int round = 0; round < options.refineRounds && bestQuality.belowDihedralThreshold > 0; ++round) {
+        progress.checkCancelled();
+        stage.update(static_cast<double>(runs + std::size_t(round)) / static_cast<double>(runs + std::size_t(options.refineRounds)));
+        if (round == 0) refined = plc;
+        InterfaceComplex next = refined;
+        const std::size_t split = splitComplexEdges(next, edgesAroundBadTets(next, best, options.minDihedralDeg));
+        if (split == 0) break;
+        try {
+            if (!attempt(next, bestAttempt, false, true)) break;
+        } catch (const Error& e) {
+            st.failedAttempts.push_back("refinement round " + std::to_string(round + 1) + ": " + e.what());
+            break;
+        }
+        refined = std::move(next);
+        st.refinedEdges += split;
+        ++st.refineRounds;
     }
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     st.nodes = best.nodes.size();

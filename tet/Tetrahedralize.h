@@ -6,6 +6,7 @@
 #include "io/TetMesh.h"
 #include "tet/ImproveSlivers.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,10 @@ struct TetOptions {
     /// After TetGen, raise tets below minDihedralDeg by smoothing, flips and splits inside the
     /// regions (tet/ImproveSlivers.h); interfaces are untouched.
     bool improveSlivers = true;
+    /// Rounds of local refinement when tets under minDihedralDeg are left: the surface edges
+    /// around them are split at their midpoints (the surface does not move) and the kept run is
+    /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h).
+    int refineRounds = 2;
 };
 
 /// What a run did, for run.json and the report.
@@ -53,6 +58,11 @@ struct TetStats {
     std::size_t belowMinDihedral = 0;   ///< tets still below options.minDihedralDeg (0 when met)
     SliverStats slivers;                ///< what the sliver improvement did on the kept run
     std::vector<std::string> failedAttempts; ///< repair runs that failed (switches: reason); the kept run stands
+    int refineRounds = 0;               ///< refinement rounds kept (TetOptions::refineRounds)
+    std::size_t refinedEdges = 0;       ///< surface edges split by them
+    /// Peak resident memory of the child processes the refinement rounds ran TetGen in (not part
+    /// of this process's peak), bytes.
+    std::uint64_t childPeakMemoryBytes = 0;
 };
 
 /// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.
