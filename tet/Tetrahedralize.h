@@ -39,8 +39,12 @@ struct TetOptions {
     bool improveSlivers = true;
     /// Rounds of local refinement when tets under minDihedralDeg are left: the surface edges
     /// around them are split at their midpoints (the surface does not move) and the kept run is
-    /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h).
-    int refineRounds = 2;
+    /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h). Off by
+    /// default: the surface's error bound (SimplifyInterfaces.h) is checked at the vertices,
+    /// centroids and edge midpoints of its triangles only, and the centroids of the split halves
+    /// were found 0.0223 mm from the raw surface against a 0.02 mm bound on the shared mandible
+    /// (2 rounds take its tets under 10 degrees from 41 to 27).
+    int refineRounds = 0;
 };
 
 /// What a run did, for run.json and the report.
