@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 namespace jawmesh {
 
@@ -37,6 +38,13 @@ using FloatAcc = FloatGrid::ConstAccessor;
 /// Tooth and bone surfaces "face each other" (a gap to bridge) when their outward normals make an
 /// angle above 135 degrees.
 constexpr double kFacingCos = 0.70710678118654752;
+
+/// Thinnest and thickest PDL asked for anywhere on a root (the profile's, else the uniform one), mm.
+std::pair<double, double> thicknessRangeMm(const std::optional<PdlProfile>& profile, double uniformMm) {
+    if (!profile) return {uniformMm, uniformMm};
+    return {std::min({profile->cervical, profile->midRoot, profile->apical}),
+            std::max({profile->cervical, profile->midRoot, profile->apical})};
+}
 
 struct Params {
     double voxel = 0.05;
@@ -263,8 +271,7 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     if (reach > 0)
         openvdb::tools::dilateActiveValues(near, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
     // Bone distances are not needed deeper in the tooth than e (there it is tooth whatever B is).
-    const double eMax = P.ratio * (P.profile ? std::max({P.profile->cervical, P.profile->midRoot, P.profile->apical})
-                                             : P.uniformThickness);
+    const double eMax = P.ratio * thicknessRangeMm(P.profile, P.uniformThickness).second;
     {
         const float deep = float(-(eMax + P.voxel));
         auto ta = T->getConstAccessor();
@@ -303,8 +310,7 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     // band, and its gradient a voxel farther, but only around band voxels where the overlap
     // (T + B, with B clamped: an upper bound) is already deeper than the least one the rule acts
     // on (boneShiftMax - w, w at most t - e / 2 at the apex), two voxels beyond for the gradient.
-    const double tMin = P.profile ? std::min({P.profile->cervical, P.profile->midRoot, P.profile->apical}) : P.uniformThickness;
-    const double tMax = P.profile ? std::max({P.profile->cervical, P.profile->midRoot, P.profile->apical}) : P.uniformThickness;
+    const auto [tMin, tMax] = thicknessRangeMm(P.profile, P.uniformThickness);
     const double gTrigger = tMax - kApexErosionShare * P.ratio * tMin - P.boneShiftMax;
     openvdb::MaskTree overlap(false);
     {
@@ -326,7 +332,7 @@ void validate(const CarveOptions& o, const FloatGrid& bone, const std::map<int, 
     if (!(o.gapBridgeMm >= 0)) throw Error("carve: gap bridge must be >= 0 mm");
     if (!(o.boneShiftMaxMm >= 0)) throw Error("carve: bone shift must be >= 0 mm");
     if (!(o.apexTaperMm >= 0)) throw Error("carve: apex taper must be >= 0 mm");
-    const double tMin = o.profile ? std::min({o.profile->cervical, o.profile->midRoot, o.profile->apical}) : o.pdlThicknessMm;
+    const double tMin = thicknessRangeMm(o.profile, o.pdlThicknessMm).first;
     if (!(tMin > 0)) throw Error("carve: PDL thickness must be > 0 mm");
     const double voxel = uniformVoxelSizeMm(bone);
     bandHalfWidthMm(bone);
@@ -359,7 +365,7 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
     P.boneShiftMax = options.boneShiftMaxMm;
     P.apexTaper = options.apexTaperMm;
     P.clearance = options.clearanceVoxels * P.voxel;
-    const double tMax = P.profile ? std::max({P.profile->cervical, P.profile->midRoot, P.profile->apical}) : P.uniformThickness;
+    const double tMax = thicknessRangeMm(P.profile, P.uniformThickness).second;
     const double eMax = P.ratio * tMax, wMax = tMax - eMax;
     const auto& xf = bone.transform();
     const Label boneL = boneLabel(jaw);

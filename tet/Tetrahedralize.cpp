@@ -451,6 +451,7 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
     QualityStats bestQuality;
     std::size_t bestAttempt = 0;
     const auto start = std::chrono::steady_clock::now();
+    const double stageSteps = static_cast<double>(runs + std::size_t(std::max(0, options.refineRounds)));  // TetGen runs at most
     // One TetGen run on `complex` (in a child process when isolated) with the improver after it;
     // kept when better than the best so far (true). Throws what TetGen or the labelling throws.
     const auto attempt = [&](const InterfaceComplex& complex, std::size_t i, bool lastResort, bool isolated) {
@@ -485,7 +486,7 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
     };
     for (std::size_t i = 0; i < runs && !(haveBest && bestQuality.belowDihedralThreshold == 0); ++i) {
         progress.checkCancelled();
-        stage.update(static_cast<double>(i) / static_cast<double>(runs + std::size_t(std::max(0, options.refineRounds))));
+        stage.update(static_cast<double>(i) / stageSteps);
         try {
             // The last attempt (radius-edge 1.5 with TetGen's own dihedral bound) makes far more
             // tets (the mandible: 1.3 M): it is kept only when it meets the bound the others missed.
@@ -499,12 +500,11 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
     }
     // Refinement rounds (RefineComplex.h): the surface edges around the tets still under the bound
     // are split and the kept attempt runs again, while that leaves fewer such tets.
-    InterfaceComplex refined;
+    InterfaceComplex refined;  // the complex of the last kept round
     for (int round = 0; round < options.refineRounds && bestQuality.belowDihedralThreshold > 0; ++round) {
         progress.checkCancelled();
-        stage.update(static_cast<double>(runs + std::size_t(round)) / static_cast<double>(runs + std::size_t(options.refineRounds)));
-        if (round == 0) refined = plc;
-        InterfaceComplex next = refined;
+        stage.update(static_cast<double>(runs + std::size_t(round)) / stageSteps);
+        InterfaceComplex next = round == 0 ? plc : refined;
         const std::size_t split = splitComplexEdges(next, edgesAroundBadTets(next, best, options.minDihedralDeg));
         if (split == 0) break;
         try {
