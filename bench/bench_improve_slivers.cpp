@@ -2,6 +2,7 @@
 // improveSlivers and prints what it did, so its effect and cost can be measured on real output.
 #include "filters/TriangleGeometry.h"
 #include "io/GmshReader.h"
+#include "io/GmshWriter.h"
 #include "tet/ElementQuality.h"
 #include "tet/TetFaceAdjacency.h"
 #include "tet/ImproveSlivers.h"
@@ -15,26 +16,41 @@
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: bench_improve_slivers <mesh.msh> [target-deg] [max-passes]\n");
+        std::fprintf(stderr, "usage: bench_improve_slivers <mesh.msh> [target-deg] [max-passes] [lookahead-depth]\n");
         return 2;
     }
     jawmesh::TetMesh mesh = jawmesh::readGmsh(argv[1]);
     jawmesh::SliverOptions o;
     if (argc > 2) o.targetMinDihedralDeg = std::stod(argv[2]);
     if (argc > 3) o.maxPasses = std::stoi(argv[3]);
+    if (argc > 4) o.lookaheadDepth = std::stoi(argv[4]);
     const jawmesh::ValidationReport before = jawmesh::validateTetMesh(mesh, {});
+    const auto volumes = [](const jawmesh::TetMesh& m) {  // per label, mm^3: the improver must keep them
+        std::map<jawmesh::Label, double> v;
+        for (std::size_t t = 0; t < m.tets.size(); ++t) {
+            const auto& e = m.tets[t];
+            const auto& a = m.nodes[std::size_t(e[0])];
+            v[m.labels[t]] += (m.nodes[std::size_t(e[1])] - a).dot((m.nodes[std::size_t(e[2])] - a).cross(m.nodes[std::size_t(e[3])] - a)) / 6.0;
+        }
+        return v;
+    };
+    const auto volumesBefore = volumes(mesh);
     jawmesh::SliverStats s;
     jawmesh::improveSlivers(mesh, o, &s);
+    for (const auto& [label, v] : volumes(mesh))
+        if (std::abs(v - volumesBefore.at(label)) > 1e-9 * volumesBefore.at(label))
+            std::printf("  VOLUME of label %d changed: %.9f -> %.9f mm^3\n", label, volumesBefore.at(label), v);
     const auto faces = [](const jawmesh::ValidationReport& v) {
         std::size_t n = 0;
         for (const auto& kv : v.interfaceFacesPerPair) n += kv.second;
         return n;
     };
     const jawmesh::ValidationReport r = jawmesh::validateTetMesh(mesh, {});
+    if (const char* out = std::getenv("BENCH_OUT")) jawmesh::writeGmsh(mesh, out);  // the improved mesh, for inspection
     std::printf("| %s | below %.0f deg: %zu -> %zu | min dihedral %.2f -> %.2f deg | smoothed %zu, 2-3 %zu, 3-2 %zu, removals %zu, "
-                "splits %zu+%zu, stars %zu, interface insertions %zu, %d passes | %.1f s | violations %zu, interface faces %zu -> %zu (split by interface insertions) |\n",
+                "splits %zu+%zu, stars %zu, interface insertions %zu, lookaheads %zu, %d passes | %.1f s | violations %zu, interface faces %zu -> %zu (split by interface insertions) |\n",
                 argv[1], o.targetMinDihedralDeg, s.badBefore, s.badAfter, s.minDihedralBeforeDeg, s.minDihedralAfterDeg,
-                s.smoothed, s.flips23, s.flips32, s.edgeRemovals, s.splits, s.faceSplits, s.cavityStars, s.interfaceInsertions, s.passes, s.seconds, r.violationCount(),
+                s.smoothed, s.flips23, s.flips32, s.edgeRemovals, s.splits, s.faceSplits, s.cavityStars, s.interfaceInsertions, s.lookaheads, s.passes, s.seconds, r.violationCount(),
                 faces(before), faces(r));
     // What is left: per remaining bad tet, how many of its nodes and faces lie on an interface.
     const jawmesh::TetFaceAdjacency adj = jawmesh::tetFaceAdjacency(mesh);

@@ -209,6 +209,9 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
                           {"face_splits", sl.faceSplits},
                           {"cavity_stars", sl.cavityStars},
                           {"interface_insertions", sl.interfaceInsertions},
+                          {"edge_removals", sl.edgeRemovals},
+                          {"lookaheads", sl.lookaheads},
+                          {"passes", sl.passes},
                           {"seconds", sl.seconds}}}};
 
     const ValidationReport report =

@@ -1,5 +1,6 @@
 #include "tet/ImproveSlivers.h"
 
+#include "io/Error.h"
 #include "tet/TetFaceAdjacency.h"
 
 #include <algorithm>
@@ -7,6 +8,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -121,6 +124,45 @@ public:
                (interfaceInsertions_ && insertOnInterfaceAround(t, st));
     }
 
+    /// Lookahead, for a tet at a local optimum of the hill climbing (no single operation raises
+    /// the tets it changes): each candidate of each operation is made whether it helps or not, the
+    /// bad tets around what it made are then improved as usual (with a lookahead of depth - 1
+    /// where that alone fails), and the whole is kept only when fewer tets are left under the
+    /// target among those it changed (as many: a better worst or shortfall); otherwise it is
+    /// undone. A flip or a split that first makes things worse can open the way to a smoothing or
+    /// another flip: the slivers a single step cannot mend.
+    bool improveWithLookahead(std::int32_t t, int depth, SliverStats& st) {
+        if (!alive_[std::size_t(t)] || tetScore(t) >= target_) return false;
+        using Operation = bool (SliverImprover::*)(std::int32_t, SliverStats&);
+        static constexpr Operation operations[] = {&SliverImprover::flip23Around,    &SliverImprover::removeEdgeAround,
+                                                   &SliverImprover::splitAround,     &SliverImprover::splitFaceAround,
+                                                   &SliverImprover::starCavityAround, &SliverImprover::insertOnInterfaceAround};
+        for (Operation op : operations) {
+            if (op == &SliverImprover::insertOnInterfaceAround && !interfaceInsertions_) continue;
+            for (int k = 0;; ++k) {
+                SliverStats trial = st;
+                beginTrial();
+                forcedCandidate_ = k;
+                candidatesSeen_ = 0;
+                const bool made = (this->*op)(t, trial);
+                const int seen = candidatesSeen_;
+                forcedCandidate_ = -1;
+                if (made) {
+                    improveAround(depth - 1, trial);
+                    if (trialHelped()) {
+                        keepTrial();
+                        st = trial;
+                        ++st.lookaheads;
+                        return true;
+                    }
+                }
+                undoTrial();
+                if (seen <= k) break;  // the operation has no k-th candidate
+            }
+        }
+        return false;
+    }
+
     void compact() {
         TetMesh out;
         out.nodes = std::move(m_.nodes);
@@ -134,6 +176,122 @@ public:
 
 private:
     const Vec3& P(std::int32_t v) const { return m_.nodes[std::size_t(v)]; }
+
+    /// Whether an operation makes a candidate whose tets score `after` in place of `before`:
+    /// when it raises them, or in a lookahead only the forced (k-th valid) candidate, which may
+    /// lower them but makes no tet flatter than 1 degree (or than the worst it replaces): a
+    /// nearly flat tet's orientation is at the mercy of rounding, and the operations after it
+    /// rely on it.
+    bool accepts(const Objective& after, const Objective& before) {
+        if (forcedCandidate_ < 0) return after.betterThan(before);
+        static const double floor = -std::cos(M_PI / 180.0);
+        return after.worst > std::min(before.worst, floor) && candidatesSeen_++ == forcedCandidate_;
+    }
+
+    /// Whether the tets `fresh` fill exactly the volume of the tets `old` (a re-triangulation of
+    /// the same cavity; with nearly flat tets around, positive orientation alone does not prove it).
+    bool fillsSameVolume(const std::vector<std::int32_t>& old, const std::vector<Tet>& fresh) const {
+        double volOld = 0, volNew = 0;
+        for (auto t : old) {
+            const Tet& e = m_.tets[std::size_t(t)];
+            volOld += signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
+        }
+        for (const Tet& e : fresh) volNew += signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
+        return std::abs(volNew - volOld) <= 1e-9 * volOld;
+    }
+
+    void moveNode(std::int32_t v, const Vec3& p) {
+        for (auto t : star_[std::size_t(v)]) recordOriginal(t);
+        for (Trial& trial : trials_) trial.moves.emplace_back(v, P(v));
+        m_.nodes[std::size_t(v)] = p;
+    }
+
+    /// For every open trial: remembers the score of a tet that existed before it, the first time
+    /// it changes.
+    void recordOriginal(std::int32_t t) {
+        for (Trial& trial : trials_) {
+            if (std::size_t(t) >= trial.tets) continue;
+            bool seen = false;
+            for (const auto& o : trial.originals) seen = seen || o.first == t;
+            if (!seen) trial.originals.emplace_back(t, tetScore(t));
+        }
+    }
+
+    void beginTrial() { trials_.push_back({m_.tets.size(), m_.nodes.size(), {}, {}}); }
+
+    /// Closes the innermost trial keeping what it did (the enclosing trials still know it).
+    void keepTrial() { trials_.pop_back(); }
+
+    /// Closes the innermost trial restoring the mesh as it was at its beginTrial.
+    void undoTrial() {
+        const Trial& trial = trials_.back();
+        for (std::size_t t = trial.tets; t < m_.tets.size(); ++t)
+            if (alive_[t])
+                for (auto v : m_.tets[t]) {
+                    auto& s = star_[std::size_t(v)];
+                    s.erase(std::find(s.begin(), s.end(), std::int32_t(t)));
+                }
+        m_.tets.resize(trial.tets);
+        m_.labels.resize(trial.tets);
+        alive_.resize(trial.tets);
+        for (auto it = trial.originals.rbegin(); it != trial.originals.rend(); ++it)
+            if (!alive_[std::size_t(it->first)]) {
+                alive_[std::size_t(it->first)] = 1;
+                for (auto v : m_.tets[std::size_t(it->first)]) star_[std::size_t(v)].push_back(it->first);
+            }
+        for (auto it = trial.moves.rbegin(); it != trial.moves.rend(); ++it) m_.nodes[std::size_t(it->first)] = it->second;
+        m_.nodes.resize(trial.nodes);
+        star_.resize(trial.nodes);
+        fixed_.resize(trial.nodes);
+        trials_.pop_back();
+    }
+
+    /// Hill climbing on the bad tets that share a node with a tet the trial made or moved.
+    void improveAround(int depth, SliverStats& st) {
+        for (int round = 0; round < 4; ++round) {
+            const Trial& trial = trials_.back();
+            std::vector<std::int32_t> nodes;
+            for (std::size_t t = trial.tets; t < m_.tets.size(); ++t)
+                if (alive_[t]) nodes.insert(nodes.end(), m_.tets[t].begin(), m_.tets[t].end());
+            for (const auto& mv : trial.moves) nodes.push_back(mv.first);
+            std::sort(nodes.begin(), nodes.end());
+            nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+            std::vector<std::pair<double, std::int32_t>> bad;
+            for (auto v : nodes)
+                for (auto s : star_[std::size_t(v)]) {
+                    const double q = tetScore(s);
+                    if (q < target_) bad.emplace_back(q, s);
+                }
+            std::sort(bad.begin(), bad.end());
+            bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+            bool changed = false;
+            for (const auto& b : bad) changed |= improve(b.second, st) || (depth > 0 && improveWithLookahead(b.second, depth, st));
+            if (!changed) return;
+        }
+    }
+
+    /// Whether the trial left fewer tets under the target among those it changed, or as many
+    /// with a better worst.
+    bool trialHelped() const {
+        const Trial& trial = trials_.back();
+        std::size_t badBefore = 0, badAfter = 0;
+        Objective before, after;
+        for (const auto& [t, q] : trial.originals) {
+            badBefore += q < target_;
+            before.add(q, target_);
+            if (!alive_[std::size_t(t)]) continue;
+            const double now = tetScore(t);
+            badAfter += now < target_;
+            after.add(now, target_);
+        }
+        for (std::size_t t = trial.tets; t < m_.tets.size(); ++t)
+            if (alive_[t]) {
+                const double now = tetScore(std::int32_t(t));
+                badAfter += now < target_;
+                after.add(now, target_);
+            }
+        return (badAfter < badBefore && after.worst >= before.worst - 1e-12) || (badAfter == badBefore && (after.worst > before.worst + 1e-9 || after.betterThan(before)));
+    }
 
     Objective objectiveOf(const std::vector<std::int32_t>& tets) const {
         Objective o;
@@ -207,7 +365,7 @@ private:
         const Objective before = scoreWith(tets, v, P(v));
         const auto [p, after] = bestPosition(tets, v, P(v));
         if (!after.betterThan(before)) return false;
-        m_.nodes[std::size_t(v)] = p;
+        moveNode(v, p);
         return true;
     }
 
@@ -221,6 +379,7 @@ private:
     }
 
     void kill(std::int32_t t) {
+        recordOriginal(t);
         alive_[std::size_t(t)] = 0;
         for (auto v : m_.tets[std::size_t(t)]) {
             auto& s = star_[std::size_t(v)];
@@ -254,8 +413,8 @@ private:
             volNew += v;
             sNew.add(score(P(e[0]), P(e[1]), P(e[2]), P(e[3])), target_);
         }
-        if (!sNew.betterThan(objectiveOf(old))) return false;
         if (std::abs(volNew - volOld) > 1e-9 * volOld) return false;  // not a re-triangulation of the same volume
+        if (!accepts(sNew, objectiveOf(old))) return false;
         const Label label = m_.labels[std::size_t(old[0])];
         for (auto t : old) kill(t);
         for (const Tet& e : fresh) add(e, label);
@@ -436,11 +595,11 @@ private:
             }
             m_.nodes.push_back(0.5 * (P(a) + P(b)));
             const auto [p, after] = bestOfStarts(fresh, m, ring);
-            if (!after.betterThan(objectiveOf(ring))) {
+            m_.nodes.back() = p;
+            if (!accepts(after, objectiveOf(ring)) || !fillsSameVolume(ring, fresh)) {
                 m_.nodes.pop_back();
                 continue;
             }
-            m_.nodes.back() = p;
             commitNewVertex(ring, fresh, m_.labels[std::size_t(t)]);
             ++st.splits;
             return true;
@@ -477,11 +636,11 @@ private:
             }
             m_.nodes.push_back((P(f[0]) + P(f[1]) + P(f[2])) / 3.0);
             const auto [p, after] = bestOfStarts(fresh, m, {t, other});
-            if (!after.betterThan(objectiveOf({t, other}))) {
+            m_.nodes.back() = p;
+            if (!accepts(after, objectiveOf({t, other})) || !fillsSameVolume({t, other}, fresh)) {
                 m_.nodes.pop_back();
                 continue;
             }
-            m_.nodes.back() = p;
             commitNewVertex({t, other}, fresh, label);
             ++st.faceSplits;
             return true;
@@ -538,11 +697,11 @@ private:
                 for (auto& v : x)
                     if (v < 0) v = m;
             const auto [p, after] = bestPosition(tets, m, q);
-            if (!after.betterThan(objectiveOf(cavity))) {
+            m_.nodes.back() = p;
+            if (!accepts(after, objectiveOf(cavity)) || !fillsSameVolume(cavity, tets)) {
                 m_.nodes.pop_back();
                 continue;
             }
-            m_.nodes.back() = p;
             commitNewVertex(cavity, tets, m_.labels[std::size_t(t)]);
             ++st.cavityStars;
             return true;
@@ -659,7 +818,7 @@ private:
                 }
                 old.insert(old.end(), cavity.begin(), cavity.end());
             }
-            if (!ok || after.worst <= kInvalid || !after.betterThan(objectiveOf(old))) continue;
+            if (!ok || after.worst <= kInvalid || !accepts(after, objectiveOf(old))) continue;
             if (!found || after.betterThan(best.objective)) {
                 best = {after, c.q, old, fresh};
                 found = true;
@@ -778,6 +937,16 @@ private:
     bool interfaceInsertions_;
     std::vector<char> alive_, fixed_;
     std::vector<std::vector<std::int32_t>> star_;
+    // Lookahead: the candidate an operation must make (-1: only one that helps), candidates seen.
+    int forcedCandidate_ = -1, candidatesSeen_ = 0;
+    // Open lookahead trials, innermost last: sizes at the start, tets changed (score before),
+    // nodes moved (position before).
+    struct Trial {
+        std::size_t tets, nodes;
+        std::vector<std::pair<std::int32_t, double>> originals;
+        std::vector<std::pair<std::int32_t, Vec3>> moves;
+    };
+    std::vector<Trial> trials_;
 };
 
 /// Smallest dihedral angle of the mesh and the number of tets below the target.
@@ -793,12 +962,24 @@ std::pair<double, std::size_t> worstAndBad(const TetMesh& mesh, double targetDeg
     return {mesh.tets.empty() ? 0.0 : worst, bad};
 }
 
+/// Volume of each label's tets, mm^3 (summed in tet order).
+std::map<Label, double> labelVolumes(const TetMesh& mesh) {
+    std::map<Label, double> volumes;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        const Tet& e = mesh.tets[t];
+        volumes[mesh.labels[t]] += signedVolume6(mesh.nodes[std::size_t(e[0])], mesh.nodes[std::size_t(e[1])],
+                                                 mesh.nodes[std::size_t(e[2])], mesh.nodes[std::size_t(e[3])]) / 6.0;
+    }
+    return volumes;
+}
+
 }  // namespace
 
 void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* stats) {
     const auto start = std::chrono::steady_clock::now();
     SliverStats st;
     std::tie(st.minDihedralBeforeDeg, st.badBefore) = worstAndBad(mesh, options.targetMinDihedralDeg);
+    const std::map<Label, double> volumesBefore = st.badBefore > 0 ? labelVolumes(mesh) : std::map<Label, double>{};
     if (st.badBefore > 0) {
         SliverImprover imp(mesh, options);
         std::vector<std::int32_t> bad = imp.badTets();
@@ -809,7 +990,21 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
             bad = imp.badTets();
             if (!changed) break;
         }
+        // Iterative deepening: depth 2 only where depth 1 is stuck.
+        for (int depth = 1, pass = 0; depth <= options.lookaheadDepth && pass < options.maxPasses && !bad.empty(); ++pass) {
+            ++st.passes;
+            bool changed = false;
+            for (auto t : bad) changed |= imp.improveWithLookahead(t, depth, st);
+            bad = imp.badTets();
+            if (!changed) ++depth;
+        }
         imp.compact();
+        // Every operation re-triangulates a cavity of one region (or splits an interface in
+        // place): a region whose volume changed means a bug, and a mesh not to hand on.
+        for (const auto& [label, volume] : labelVolumes(mesh))
+            if (std::abs(volume - volumesBefore.at(label)) > 1e-9 * volumesBefore.at(label))
+                throw Error("improveSlivers", "internal error: the volume of label " + std::to_string(label) + " changed from " +
+                                                  std::to_string(volumesBefore.at(label)) + " to " + std::to_string(volume) + " mm^3");
     }
     std::tie(st.minDihedralAfterDeg, st.badAfter) = worstAndBad(mesh, options.targetMinDihedralDeg);
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -465,6 +465,7 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
         if (options.improveSlivers) {
             SliverOptions so;
             so.targetMinDihedralDeg = options.minDihedralDeg;
+            so.lookaheadDepth = options.sliverLookaheadDepth;
             improveSlivers(raw.mesh, so, &slivers);
         }
         const QualityStats q = measureQuality(raw.mesh, options.minDihedralDeg);

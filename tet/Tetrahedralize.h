@@ -37,6 +37,7 @@ struct TetOptions {
     /// After TetGen, raise tets below minDihedralDeg by smoothing, flips and splits inside the
     /// regions (tet/ImproveSlivers.h); interfaces are untouched.
     bool improveSlivers = true;
+    int sliverLookaheadDepth = 1;   ///< SliverOptions::lookaheadDepth of that improvement
     /// Rounds of local refinement when tets under minDihedralDeg are left: the surface edges
     /// around them are split at their midpoints (the surface does not move) and the kept run is
     /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h). Off by

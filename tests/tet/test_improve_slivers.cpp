@@ -148,11 +148,12 @@ TEST(ImproveSlivers, InterfaceInsertionsMendSliversBetweenTwoCloseInterfaces) {
     ASSERT_GT(q0.belowDihedralThreshold, 0u) << "the thin PDL must give slivers";
 
     TetMesh inside = raw, across = raw;
-    SliverOptions noInsertions;
+    SliverOptions noInsertions, insertions;  // both without the lookahead, measured on its own below
     noInsertions.interfaceInsertions = false;
+    noInsertions.lookaheadDepth = insertions.lookaheadDepth = 0;
     SliverStats s0, s1;
     improveSlivers(inside, noInsertions, &s0);
-    improveSlivers(across, SliverOptions{}, &s1);
+    improveSlivers(across, insertions, &s1);
     std::printf("below 10 deg: %zu from TetGen, %zu inside the regions only, %zu with %zu interface insertions (min %.2f deg)\n",
                 q0.belowDihedralThreshold, s0.badAfter, s1.badAfter, s1.interfaceInsertions, s1.minDihedralAfterDeg);
     EXPECT_GT(s0.badAfter, 0u) << "the regions alone cannot mend these";
@@ -163,6 +164,37 @@ TEST(ImproveSlivers, InterfaceInsertionsMendSliversBetweenTwoCloseInterfaces) {
     EXPECT_TRUE(validateTetMesh(across, {}).valid());
     for (std::size_t t = 0; t < across.tets.size(); ++t) ASSERT_GT(volume(across, t), 0.0) << t;
     expectSameGeometry(across, raw);
+}
+
+TEST(ImproveSlivers, LookaheadMendsWhatNoSingleOperationCanAndUndoesWhatDoesNotHelp) {
+    // The thin PDL of the test above (coarser): the hill climbing stops where every single operation
+    // would lower the tets it changes; trying each candidate anyway and improving around it
+    // mends more, and the trials that do not help leave no trace (geometry, validity).
+    TetOptions o;
+    o.radiusEdgeRatio = 2.0;
+    o.repairAttempts = 0;
+    o.improveSlivers = false;
+    const TetMesh raw = tetrahedralize(test::thinPdlComplex(0.045, 2), o);
+    TetMesh climbed = raw, looked = raw;
+    SliverOptions noLookahead;
+    noLookahead.lookaheadDepth = 0;
+    SliverStats s0, s1;
+    improveSlivers(climbed, noLookahead, &s0);
+    improveSlivers(looked, SliverOptions{}, &s1);
+    std::printf("below 10 deg: %zu from TetGen, %zu hill climbing, %zu with the lookahead (%zu kept, min %.2f -> %.2f deg)\n",
+                s0.badBefore, s0.badAfter, s1.badAfter, s1.lookaheads, s0.minDihedralAfterDeg, s1.minDihedralAfterDeg);
+    ASSERT_GT(s0.badAfter, 0u) << "the hill climbing must leave tets for the lookahead";
+    EXPECT_GT(s1.lookaheads, 0u);
+    EXPECT_LT(s1.badAfter, s0.badAfter);
+    EXPECT_EQ(s1.badAfter, measureQuality(looked, 10.0).belowDihedralThreshold);
+    EXPECT_TRUE(validateTetMesh(looked, {}).valid());
+    for (std::size_t t = 0; t < looked.tets.size(); ++t) ASSERT_GT(volume(looked, t), 0.0) << t;
+    expectSameGeometry(looked, raw);
+    // deterministic, undone trials included
+    TetMesh again = raw;
+    improveSlivers(again, SliverOptions{});
+    EXPECT_EQ(again.tets, looked.tets);
+    EXPECT_EQ(again.nodes, looked.nodes);
 }
 
 TEST(ImproveSlivers, LeavesAGoodMeshAloneAndIsDeterministic) {
