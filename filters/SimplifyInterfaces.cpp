@@ -974,10 +974,20 @@ std::vector<Block> makeBlocks(const State& st, double blockMm, double offsetMm, 
         BBox box;
         for (std::int32_t v : f) box.extend(P[std::size_t(v)]);
         const Cell& c = cellOf[t];
+        // Per axis, which neighbours (-1, +1) the box comes near; most triangles sit inside their
+        // cell and skip the 26 lookups (the test below then decides exactly, as before).
+        bool reach[3][2];
+        for (int k = 0; k < 3; ++k) {
+            reach[k][0] = box.min[k] <= c[std::size_t(k)] * blockMm + offsetMm + marginMm;
+            reach[k][1] = box.max[k] >= (c[std::size_t(k)] + 1) * blockMm + offsetMm - marginMm;
+        }
+        if (!(reach[0][0] || reach[0][1] || reach[1][0] || reach[1][1] || reach[2][0] || reach[2][1])) continue;
+        const auto skip = [&](int k, int d) { return d != 0 && !reach[k][d > 0 ? 1 : 0]; };
         for (int dx = -1; dx <= 1; ++dx)
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dz = -1; dz <= 1; ++dz) {
                     if (!dx && !dy && !dz) continue;
+                    if (skip(0, dx) || skip(1, dy) || skip(2, dz)) continue;
                     const Cell nb{c[0] + dx, c[1] + dy, c[2] + dz};
                     const auto it = index.find(nb);
                     if (it == index.end()) continue;
