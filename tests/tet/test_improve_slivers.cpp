@@ -100,6 +100,16 @@ TetMesh distortedTwoRegionGrid() {
     return m;
 }
 
+/// TetGen's own output (q2/0 under -Y, no improvement) on a tooth sphere in a PDL shell
+/// `thicknessMm` thick turned against it (test::thinPdlComplex, subdivision 2).
+TetMesh rawThinPdlMesh(double thicknessMm) {
+    TetOptions o;
+    o.radiusEdgeRatio = 2.0;
+    o.repairAttempts = 0;
+    o.improveSlivers = false;
+    return tetrahedralize(test::thinPdlComplex(thicknessMm, 2), o);
+}
+
 TEST(ImproveSlivers, RepairsFlatTetsWithoutTouchingInterfacesOrVolumes) {
     TetMesh m = distortedTwoRegionGrid();
     const TetMesh before = m;
@@ -139,11 +149,7 @@ TEST(ImproveSlivers, InterfaceInsertionsMendSliversBetweenTwoCloseInterfaces) {
     // TetGen under -Y on a PDL 0.04 mm thick between spheres of 0.3 mm edges turned against each
     // other: its tets can only span the two spheres' nodes, and many are slivers that nothing
     // inside one region can mend.
-    TetOptions o;
-    o.radiusEdgeRatio = 2.0;
-    o.repairAttempts = 0;
-    o.improveSlivers = false;
-    const TetMesh raw = tetrahedralize(test::thinPdlComplex(0.04, 2), o);
+    const TetMesh raw = rawThinPdlMesh(0.04);
     const QualityStats q0 = measureQuality(raw, 10.0);
     ASSERT_GT(q0.belowDihedralThreshold, 0u) << "the thin PDL must give slivers";
 
@@ -170,11 +176,7 @@ TEST(ImproveSlivers, LookaheadMendsWhatNoSingleOperationCanAndUndoesWhatDoesNotH
     // The thin PDL of the test above (coarser): the hill climbing stops where every single operation
     // would lower the tets it changes; trying each candidate anyway and improving around it
     // mends more, and the trials that do not help leave no trace (geometry, validity).
-    TetOptions o;
-    o.radiusEdgeRatio = 2.0;
-    o.repairAttempts = 0;
-    o.improveSlivers = false;
-    const TetMesh raw = tetrahedralize(test::thinPdlComplex(0.045, 2), o);
+    const TetMesh raw = rawThinPdlMesh(0.045);
     TetMesh climbed = raw, looked = raw;
     SliverOptions noLookahead;
     noLookahead.lookaheadDepth = 0;
