@@ -128,9 +128,9 @@ public:
     /// the tets it changes): each candidate of each operation is made whether it helps or not, the
     /// bad tets around what it made are then improved as usual (with a lookahead of depth - 1
     /// where that alone fails), and the whole is kept only when fewer tets are left under the
-    /// target among those it changed (as many: a better worst or shortfall); otherwise it is
-    /// undone. A flip or a split that first makes things worse can open the way to a smoothing or
-    /// another flip: the slivers a single step cannot mend.
+    /// target among those it changed (trialHelped); otherwise it is undone. A flip or a split
+    /// that first makes things worse can open the way to a smoothing or another flip: the
+    /// slivers a single step cannot mend.
     bool improveWithLookahead(std::int32_t t, int depth, SliverStats& st) {
         if (!alive_[std::size_t(t)] || tetScore(t) >= target_) return false;
         using Operation = bool (SliverImprover::*)(std::int32_t, SliverStats&);
@@ -270,8 +270,8 @@ private:
         }
     }
 
-    /// Whether the trial left fewer tets under the target among those it changed, or as many
-    /// with a better worst.
+    /// Whether the trial left fewer tets under the target among those it changed without a worse
+    /// worst, or as many with a better worst or a smaller shortfall.
     bool trialHelped() const {
         const Trial& trial = trials_.back();
         std::size_t badBefore = 0, badAfter = 0;
@@ -290,7 +290,8 @@ private:
                 badAfter += now < target_;
                 after.add(now, target_);
             }
-        return (badAfter < badBefore && after.worst >= before.worst - 1e-12) || (badAfter == badBefore && (after.worst > before.worst + 1e-9 || after.betterThan(before)));
+        if (badAfter < badBefore) return after.worst >= before.worst - 1e-12;
+        return badAfter == badBefore && (after.worst > before.worst + 1e-9 || after.betterThan(before));
     }
 
     Objective objectiveOf(const std::vector<std::int32_t>& tets) const {
