@@ -25,19 +25,10 @@ int main(int argc, char** argv) {
     if (argc > 3) o.maxPasses = std::stoi(argv[3]);
     if (argc > 4) o.lookaheadDepth = std::stoi(argv[4]);
     const jawmesh::ValidationReport before = jawmesh::validateTetMesh(mesh, {});
-    const auto volumes = [](const jawmesh::TetMesh& m) {  // per label, mm^3: the improver must keep them
-        std::map<jawmesh::Label, double> v;
-        for (std::size_t t = 0; t < m.tets.size(); ++t) {
-            const auto& e = m.tets[t];
-            const auto& a = m.nodes[std::size_t(e[0])];
-            v[m.labels[t]] += (m.nodes[std::size_t(e[1])] - a).dot((m.nodes[std::size_t(e[2])] - a).cross(m.nodes[std::size_t(e[3])] - a)) / 6.0;
-        }
-        return v;
-    };
-    const auto volumesBefore = volumes(mesh);
+    const auto volumesBefore = jawmesh::labelVolumesMm3(mesh);  // the improver must keep them
     jawmesh::SliverStats s;
     jawmesh::improveSlivers(mesh, o, &s);
-    for (const auto& [label, v] : volumes(mesh))
+    for (const auto& [label, v] : jawmesh::labelVolumesMm3(mesh))
         if (std::abs(v - volumesBefore.at(label)) > 1e-9 * volumesBefore.at(label))
             std::printf("  VOLUME of label %d changed: %.9f -> %.9f mm^3\n", label, volumesBefore.at(label), v);
     const auto faces = [](const jawmesh::ValidationReport& v) {

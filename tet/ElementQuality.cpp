@@ -9,6 +9,18 @@
 
 namespace jawmesh {
 
+double signedTetVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).dot((c - a).cross(d - a)) / 6.0; }
+
+std::map<Label, double> labelVolumesMm3(const TetMesh& mesh) {
+    std::map<Label, double> volumes;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        const Tet& e = mesh.tets[t];
+        volumes[mesh.labels[t]] += signedTetVolume(mesh.nodes[std::size_t(e[0])], mesh.nodes[std::size_t(e[1])],
+                                                   mesh.nodes[std::size_t(e[2])], mesh.nodes[std::size_t(e[3])]);
+    }
+    return volumes;
+}
+
 TetShape tetShape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
     TetShape s;
     const Vec3 u = b - a, v = c - a, w = d - a;

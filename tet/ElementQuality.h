@@ -31,6 +31,13 @@ TetShape tetShape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 /// Shape of every tet of `mesh` (indices must be in range), in tet order. Cost: O(T), TBB-parallel.
 std::vector<TetShape> tetShapes(const TetMesh& mesh);
 
+/// Signed volume of the tet (a, b, c, d), mm^3: positive for the orientation of io/TetMesh.h.
+double signedTetVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// Volume of each label's tets, mm^3 (signed volumes summed in tet order, so the same mesh gives
+/// the same figures). Cost: O(T).
+std::map<Label, double> labelVolumesMm3(const TetMesh& mesh);
+
 /// Quality summary over a mesh.
 struct QualityStats {
     std::size_t tets = 0;

@@ -1,6 +1,7 @@
 #include "tet/ImproveSlivers.h"
 
 #include "io/Error.h"
+#include "tet/ElementQuality.h"
 #include "tet/TetFaceAdjacency.h"
 
 #include <algorithm>
@@ -399,22 +400,12 @@ private:
     /// Replaces `old` by `fresh` (same label) when every new tet is positive, the volume is the
     /// same and the smallest score rises.
     bool replaceIfBetter(const std::vector<std::int32_t>& old, std::vector<Tet> fresh) {
-        double volOld = 0, volNew = 0;
-        for (auto t : old) {
-            const Tet& e = m_.tets[std::size_t(t)];
-            volOld += signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
-        }
         Objective sNew;
         for (Tet& e : fresh) {
-            double v = signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
-            if (v < 0) {
-                std::swap(e[2], e[3]);
-                v = -v;
-            }
-            volNew += v;
+            if (signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3])) < 0) std::swap(e[2], e[3]);
             sNew.add(score(P(e[0]), P(e[1]), P(e[2]), P(e[3])), target_);
         }
-        if (std::abs(volNew - volOld) > 1e-9 * volOld) return false;  // not a re-triangulation of the same volume
+        if (!fillsSameVolume(old, fresh)) return false;  // not a re-triangulation of the same volume
         if (!accepts(sNew, objectiveOf(old))) return false;
         const Label label = m_.labels[std::size_t(old[0])];
         for (auto t : old) kill(t);
@@ -963,24 +954,13 @@ std::pair<double, std::size_t> worstAndBad(const TetMesh& mesh, double targetDeg
     return {mesh.tets.empty() ? 0.0 : worst, bad};
 }
 
-/// Volume of each label's tets, mm^3 (summed in tet order).
-std::map<Label, double> labelVolumes(const TetMesh& mesh) {
-    std::map<Label, double> volumes;
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-        const Tet& e = mesh.tets[t];
-        volumes[mesh.labels[t]] += signedVolume6(mesh.nodes[std::size_t(e[0])], mesh.nodes[std::size_t(e[1])],
-                                                 mesh.nodes[std::size_t(e[2])], mesh.nodes[std::size_t(e[3])]) / 6.0;
-    }
-    return volumes;
-}
-
 }  // namespace
 
 void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* stats) {
     const auto start = std::chrono::steady_clock::now();
     SliverStats st;
     std::tie(st.minDihedralBeforeDeg, st.badBefore) = worstAndBad(mesh, options.targetMinDihedralDeg);
-    const std::map<Label, double> volumesBefore = st.badBefore > 0 ? labelVolumes(mesh) : std::map<Label, double>{};
+    const std::map<Label, double> volumesBefore = st.badBefore > 0 ? labelVolumesMm3(mesh) : std::map<Label, double>{};
     if (st.badBefore > 0) {
         SliverImprover imp(mesh, options);
         std::vector<std::int32_t> bad = imp.badTets();
@@ -1002,7 +982,7 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
         imp.compact();
         // Every operation re-triangulates a cavity of one region (or splits an interface in
         // place): a region whose volume changed means a bug, and a mesh not to hand on.
-        for (const auto& [label, volume] : labelVolumes(mesh))
+        for (const auto& [label, volume] : labelVolumesMm3(mesh))
             if (std::abs(volume - volumesBefore.at(label)) > 1e-9 * volumesBefore.at(label))
                 throw Error("improveSlivers", "internal error: the volume of label " + std::to_string(label) + " changed from " +
                                                   std::to_string(volumesBefore.at(label)) + " to " + std::to_string(volume) + " mm^3");

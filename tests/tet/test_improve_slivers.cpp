@@ -23,8 +23,7 @@ const Label kTooth = toothLabel(24);
 
 double volume(const TetMesh& m, std::size_t t) {
     const auto& e = m.tets[t];
-    const Vec3& a = m.nodes[std::size_t(e[0])];
-    return (m.nodes[std::size_t(e[1])] - a).dot((m.nodes[std::size_t(e[2])] - a).cross(m.nodes[std::size_t(e[3])] - a)) / 6.0;
+    return signedTetVolume(m.nodes[std::size_t(e[0])], m.nodes[std::size_t(e[1])], m.nodes[std::size_t(e[2])], m.nodes[std::size_t(e[3])]);
 }
 
 /// Faces between different labels or on the outside, as sorted node triples.
@@ -57,17 +56,11 @@ std::map<std::pair<Label, Label>, double> interfaceAreas(const TetMesh& m) {
     return out;
 }
 
-std::map<Label, double> regionVolumes(const TetMesh& m) {
-    std::map<Label, double> vol;
-    for (std::size_t t = 0; t < m.tets.size(); ++t) vol[m.labels[t]] += volume(m, t);
-    return vol;
-}
-
 void expectSameGeometry(const TetMesh& after, const TetMesh& before) {
     const auto a = interfaceAreas(after), b = interfaceAreas(before);
     ASSERT_EQ(a.size(), b.size());
     for (const auto& [pair, area] : b) EXPECT_NEAR(a.at(pair), area, 1e-9 * area) << pair.first << "|" << pair.second;
-    const auto va = regionVolumes(after), vb = regionVolumes(before);
+    const auto va = labelVolumesMm3(after), vb = labelVolumesMm3(before);
     ASSERT_EQ(va.size(), vb.size());
     for (const auto& [label, vol] : vb) EXPECT_NEAR(va.at(label), vol, 1e-9 * vol) << label;
     // the nodes of the interfaces before have not moved
@@ -133,7 +126,7 @@ TEST(ImproveSlivers, RepairsFlatTetsWithoutTouchingInterfacesOrVolumes) {
     // interfaces and the outside: the same area on unmoved nodes (split by nodes on them at most)
     expectSameGeometry(m, before);
     // each region keeps its volume (3 x 6 x 6 mm^3 each)
-    const auto vol = regionVolumes(m);
+    const auto vol = labelVolumesMm3(m);
     EXPECT_NEAR(vol.at(kBone), 108.0, 1e-9);
     EXPECT_NEAR(vol.at(kTooth), 108.0, 1e-9);
 
