@@ -1,6 +1,7 @@
 #include "filters/SimplifyInterfaces.h"
 
 #include "filters/NearTeeth.h"
+#include "filters/PlateThickness.h"
 #include "filters/RegionWedges.h"
 
 #include "filters/SelfIntersections.h"
@@ -184,6 +185,7 @@ struct State {
     std::vector<Quadric> quadrics;               ///< per input vertex
     std::vector<float> err;                      ///< per input vertex: distance to its output triangle
     std::vector<char> nearTeeth;                 ///< per input vertex (filters/NearTeeth.h)
+    const std::vector<float>* plateMm = nullptr; ///< per input vertex: thin plate it bounds (PlateThickness.h)
     std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts;  ///< per curve edge
 };
 
@@ -381,7 +383,17 @@ private:
     /// The error bound of input vertex p on triangle t's interface.
     double boundOf(std::int32_t p, std::int32_t t) const {
         const PairRule& r = rule(t);
-        return state_.nearTeeth[std::size_t(p)] ? r.errorMm : r.farErrorMm;
+        return std::min(state_.nearTeeth[std::size_t(p)] ? r.errorMm : r.farErrorMm, plateBound(p));
+    }
+    /// How far a thin plate's sheet may move at input vertex p (infinite off plates).
+    double plateBound(std::int32_t p) const {
+        return opt_.plateErrorFraction * double((*state_.plateMm)[std::size_t(p)]);
+    }
+    /// Longest new edge on a thin plate at local vertices a, b, c (infinite off plates).
+    double plateEdge(std::int32_t a, std::int32_t b, std::int32_t c) const {
+        const auto& T = *state_.plateMm;
+        return opt_.plateEdgeFactor * double(std::min({T[std::size_t(gid_[std::size_t(a)])], T[std::size_t(gid_[std::size_t(b)])],
+                                                       T[std::size_t(gid_[std::size_t(c)])]}));
     }
 
     std::int32_t third(std::int32_t t, std::int32_t a, std::int32_t b) const {
@@ -520,10 +532,11 @@ private:
             // can hand a long tooth/PDL edge to a cap triangle (0.10 mm cap edges on the mandible).
             const double maxEdge = rule(t).maxEdgeMm;
             for (std::int32_t x : {a, b}) {
+                const double longest = std::min(maxEdge, plateEdge(u, v, x));
                 bool existing = false;
                 for (int k = 0; k < uv->n && !existing; ++k)
                     existing = apex[k] == x && pair_[std::size_t(uv->tris[k])] == pair_[std::size_t(t)];
-                if (!existing && (pos_[std::size_t(x)] - pv).norm() > maxEdge) return false;
+                if (!existing && (pos_[std::size_t(x)] - pv).norm() > longest) return false;
             }
         }
 
@@ -538,6 +551,7 @@ private:
         if (other) {
             double bound = std::numeric_limits<double>::infinity();
             for (std::int32_t t : vtris_[std::size_t(u)]) bound = std::min(bound, rule(t).errorMm);
+            bound = std::min(bound, plateBound(gid_[std::size_t(u)]));
             const Vec3& pw = pos_[std::size_t(other->w)];
             const auto within = [&](std::int32_t p) {  // p: input vertex id
                 return squaredDistanceToSegment(points_[std::size_t(p)], pv, pw) <= bound * bound;
@@ -906,7 +920,8 @@ nlohmann::json toJson(const SimplifyStats& s) {
             {"exhaustive_rerun", s.exhaustiveRerun},
             {"corner_splits", s.cornerSplits},
             {"min_wedge_deg", s.minWedgeDeg},
-            {"edges_below_min_wedge", s.edgesBelowMinWedge}};
+            {"edges_below_min_wedge", s.edgesBelowMinWedge},
+            {"plate_vertices", s.plateVertices}};
 }
 
 nlohmann::json toJson(const SimplifyOptions& o) {
@@ -915,7 +930,8 @@ nlohmann::json toJson(const SimplifyOptions& o) {
             {"bone_near_teeth_mm", o.boneNearTeethMm}, {"pdl_max_edge_mm", o.pdlMaxEdgeMm},
             {"cap_max_edge_mm", o.capMaxEdgeMm},      {"tooth_max_edge_mm", o.toothMaxEdgeMm},
             {"bone_max_edge_mm", o.boneMaxEdgeMm},    {"min_angle_deg", o.minAngleDeg},
-            {"min_wedge_deg", o.minWedgeDeg}};
+            {"min_wedge_deg", o.minWedgeDeg},         {"plate_max_mm", o.plateMaxMm},
+            {"plate_error_fraction", o.plateErrorFraction}, {"plate_edge_factor", o.plateEdgeFactor}};
 }
 
 std::string interfaceKind(Label a, Label b) {
@@ -1066,7 +1082,8 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     if (input.sides.size() != input.surface.triangles.size())
         throw Error("simplification: one label pair per triangle is required");
     for (double x : {options.toothErrorMm, options.pdlErrorMm, options.boneErrorMm, options.boneFarErrorMm, options.boneNearTeethMm,
-                     options.pdlMaxEdgeMm, options.capMaxEdgeMm, options.toothMaxEdgeMm, options.boneMaxEdgeMm})
+                     options.pdlMaxEdgeMm, options.capMaxEdgeMm, options.toothMaxEdgeMm, options.boneMaxEdgeMm,
+                     options.plateMaxMm, options.plateErrorFraction, options.plateEdgeFactor})
         if (!(x >= 0) || !std::isfinite(x)) throw Error("simplification: error bounds and edge lengths must be >= 0");
     if (!(options.minAngleDeg >= 0 && options.minAngleDeg < 60))
         throw Error("simplification: minimum angle must be in [0, 60) degrees");
@@ -1085,6 +1102,11 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     // ~100 bytes per input vertex for the whole run (about 1.3 GB on a mandible).
     const auto& P = input.surface.vertices;
     std::vector<char> nearTeeth = verticesNearTeeth(input, options.boneNearTeethMm);
+    // Thin plates are measured near the teeth only (the crest, pinched PDL): far away the bone is
+    // millimetres thick, and the rays would cost seconds for nothing.
+    const std::vector<float> plateMm =
+        options.plateMaxMm > 0 ? plateThicknessMm(input, nearTeeth, PlateOptions{options.plateMaxMm})
+                               : std::vector<float>(nv, std::numeric_limits<float>::infinity());
     const InputSurface inputSurface(input);
     const auto startState = [&] {
         State st;
@@ -1096,6 +1118,7 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
         st.quadrics.resize(nv);
         st.err.assign(nv, 0.0f);
         st.nearTeeth = nearTeeth;
+        st.plateMm = &plateMm;
         for (const Tri& f : st.tris) {
             const Vec3 n2 = (P[std::size_t(f[1])] - P[std::size_t(f[0])]).cross(P[std::size_t(f[2])] - P[std::size_t(f[0])]);
             const double len = n2.norm();
@@ -1141,6 +1164,7 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     s = SimplifyStats{};
     s.exhaustiveRerun = rerun;
     s.cornerSplits = cornerSplits;
+    s.plateVertices = std::size_t(std::count_if(plateMm.begin(), plateMm.end(), [](float x) { return std::isfinite(x); }));
 
     s.inputTriangles = input.surface.triangles.size();
     s.outputTriangles = out.surface.triangles.size();

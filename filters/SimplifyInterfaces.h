@@ -60,6 +60,13 @@ struct SimplifyOptions {
     /// the tets there can be no better. Collapses may not create a smaller one, nor shrink one
     /// that was already smaller. 0 = off.
     double minWedgeDeg = 20.0;
+    /// Thin plates (PlateThickness.h: a region between two nearly parallel sheets, measured near
+    /// the teeth up to this thickness, mm; 0 = off): a collapse may move a plate's sheet by at
+    /// most plateErrorFraction of its thickness and give it no new edge longer than
+    /// plateEdgeFactor times it, so the tets across it can keep their angles (about atan(T / L)).
+    double plateMaxMm = 0.1;
+    double plateErrorFraction = 0.25;
+    double plateEdgeFactor = 4.0;
     /// Parallel passes over cubic blocks of this edge (border vertices frozen, then blocks shifted
     /// by half), then one serial pass over everything; 0 = the serial pass only. The result does
     /// not depend on the thread count.
@@ -86,6 +93,7 @@ struct SimplifyStats {
     double seconds = 0;
     bool exhaustiveRerun = false;  ///< the local intersection test missed one: redone exhaustively
     std::size_t cornerSplits = 0;
+    std::size_t plateVertices = 0;    ///< input vertices on a thin plate (SimplifyOptions::plateMaxMm)
     double minWedgeDeg = 360;         ///< smallest region wedge of the output (RegionWedges.h)
     std::size_t edgesBelowMinWedge = 0; ///< output edges with a wedge under SimplifyOptions::minWedgeDeg  ///< edges split so no region has a 3-triangle corner (SplitCorners.h)
 };

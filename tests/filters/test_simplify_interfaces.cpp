@@ -2,6 +2,7 @@
 // closed, manifold, of the same topology, within the error bound, intersection-free; deterministic.
 #include "filters/ExtractInterfaces.h"
 #include "filters/NearTeeth.h"
+#include "filters/PlateThickness.h"
 #include "filters/RegionWedges.h"
 #include "filters/SelfIntersections.h"
 #include "filters/SimplifyInterfaces.h"
@@ -195,6 +196,56 @@ TEST(SimplifyInterfaces, NoRegionComesToSpanAThinWedge) {
     EXPECT_LE(coarse.edgesBelow, fine.edgesBelow);
     EXPECT_DOUBLE_EQ(s.stats.minWedgeDeg, coarse.smallestDeg);
     EXPECT_EQ(s.stats.edgesBelowMinWedge, coarse.edgesBelow);
+}
+
+TEST(SimplifyInterfaces, ThinPlatesKeepTheirThicknessAndGetNoLongEdges) {
+    // A tooth-labelled slab about 0.08 mm thick (1-2 voxels), gently curved: its sheets may move
+    // by a quarter of its thickness at most, and no new edge on it may be longer than 4 times it.
+    // Without the plate rules the slab gets the tooth's long edges, so the tets across it would be
+    // flat.
+    const Label tooth = toothLabel(18);
+    const auto slab = [](const Vec3& p) {
+        const double mid = 0.05 * std::sin(2.0 * p.x());
+        return std::max({std::abs(p.z() - mid) - 0.04, std::abs(p.x()) - 1.0, std::abs(p.y()) - 1.0});
+    };
+    const auto field = test::sampleField({{tooth, slab}}, {-1, -1, -0.1}, {1, 1, 0.1}, 0.05);
+    const InterfaceComplex fine = extractInterfaces(field.field);
+    SimplifyOptions on;
+    SimplifyOptions off = on;
+    off.plateMaxMm = 0;
+    SimplifyStats stats;
+    const InterfaceComplex coarse = simplifyInterfaces(fine, on, noProgress(), &stats);
+    const InterfaceComplex free = simplifyInterfaces(fine, off);
+
+    const std::vector<float> fineT = plateThicknessMm(fine, {});
+    float thinnest = std::numeric_limits<float>::infinity(), thickest = 0;
+    for (float t : fineT)
+        if (std::isfinite(t)) {
+            thinnest = std::min(thinnest, t);
+            thickest = std::max(thickest, t);
+        }
+    ASSERT_GT(stats.plateVertices, fine.surface.vertices.size() / 2) << "the slab's faces are a plate";
+    const auto inner = [](const Vec3& p) { return std::abs(p.x()) < 0.9 && std::abs(p.y()) < 0.9; };
+    const auto longestInnerEdge = [&](const InterfaceComplex& c) {
+        double longest = 0;
+        for (const Tri& f : c.surface.triangles) {
+            const Vec3 &a = c.surface.vertices[f[0]], &b = c.surface.vertices[f[1]], &d = c.surface.vertices[f[2]];
+            if (inner(a) && inner(b) && inner(d)) longest = std::max({longest, (a - b).norm(), (b - d).norm(), (d - a).norm()});
+        }
+        return longest;
+    };
+    const double edgeOn = longestInnerEdge(coarse), edgeOff = longestInnerEdge(free);
+    const std::vector<float> coarseT = plateThicknessMm(coarse, {});
+    float coarseThinnest = std::numeric_limits<float>::infinity();
+    for (std::size_t v = 0; v < coarseT.size(); ++v)
+        if (inner(coarse.surface.vertices[v])) coarseThinnest = std::min(coarseThinnest, coarseT[v]);
+    std::printf("slab: plate %.4f-%.4f mm; %zu -> %zu triangles (%zu without the plate rules); longest inner edge %.3f mm (%.3f)\n",
+                thinnest, thickest, fine.surface.triangles.size(), coarse.surface.triangles.size(),
+                free.surface.triangles.size(), edgeOn, edgeOff);
+    EXPECT_LE(edgeOn, on.plateEdgeFactor * thickest + 1e-9);
+    EXPECT_GT(edgeOff, on.plateEdgeFactor * thickest);
+    EXPECT_GE(coarseThinnest, (1 - 2 * on.plateErrorFraction) * thinnest);
+    EXPECT_LT(coarse.surface.triangles.size(), fine.surface.triangles.size() / 2);
 }
 
 TEST(SimplifyInterfaces, DeterministicAndRejectsBadOptions) {
