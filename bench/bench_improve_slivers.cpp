@@ -39,9 +39,9 @@ int main(int argc, char** argv) {
     const jawmesh::ValidationReport r = jawmesh::validateTetMesh(mesh, {});
     if (const char* out = std::getenv("BENCH_OUT")) jawmesh::writeGmsh(mesh, out);  // the improved mesh, for inspection
     std::printf("| %s | below %.0f deg: %zu -> %zu | min dihedral %.2f -> %.2f deg | smoothed %zu, 2-3 %zu, 3-2 %zu, removals %zu, "
-                "splits %zu+%zu, stars %zu, interface insertions %zu, lookaheads %zu, %d passes | %.1f s | violations %zu, interface faces %zu -> %zu (split by interface insertions) |\n",
+                "splits %zu+%zu, stars %zu, interface insertions %zu, lookaheads %zu, pushes %zu (largest %.4f mm), %d passes | %.1f s | violations %zu, interface faces %zu -> %zu (split by interface insertions) |\n",
                 argv[1], o.targetMinDihedralDeg, s.badBefore, s.badAfter, s.minDihedralBeforeDeg, s.minDihedralAfterDeg,
-                s.smoothed, s.flips23, s.flips32, s.edgeRemovals, s.splits, s.faceSplits, s.cavityStars, s.interfaceInsertions, s.lookaheads, s.passes, s.seconds, r.violationCount(),
+                s.smoothed, s.flips23, s.flips32, s.edgeRemovals, s.splits, s.faceSplits, s.cavityStars, s.interfaceInsertions, s.lookaheads, s.interfacePushes, s.largestPushMm, s.passes, s.seconds, r.violationCount(),
                 faces(before), faces(r));
     // What is left: per remaining bad tet, how many of its nodes and faces lie on an interface.
     const jawmesh::TetFaceAdjacency adj = jawmesh::tetFaceAdjacency(mesh);

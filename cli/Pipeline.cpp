@@ -211,6 +211,8 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
                           {"interface_insertions", sl.interfaceInsertions},
                           {"edge_removals", sl.edgeRemovals},
                           {"lookaheads", sl.lookaheads},
+                          {"interface_pushes", sl.interfacePushes},
+                          {"largest_push_mm", sl.largestPushMm},
                           {"passes", sl.passes},
                           {"seconds", sl.seconds}}}};
 

@@ -67,6 +67,7 @@ const NumberKey kNumberKeys[] = {
     {"tet_pdl_edge_mm", [](RunOptions& o) -> double& { return o.tet.pdlEdgeMm; }, 0, 1000},
     {"tet_tooth_edge_mm", [](RunOptions& o) -> double& { return o.tet.toothEdgeMm; }, 0, 1000},
     {"tet_bone_edge_mm", [](RunOptions& o) -> double& { return o.tet.boneEdgeMm; }, 0, 1000},
+    {"tet_interface_push_mm", [](RunOptions& o) -> double& { return o.tet.sliverInterfacePushMm; }, 0, 0.05},
 };
 
 void checkRanges(const std::string& name, RunOptions& o) {

@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -164,6 +165,51 @@ public:
         return false;
     }
 
+    /// The last resort (SliverOptions::interfacePushMm): for tet t, its interface nodes inside the
+    /// mesh, lowest over their opposite face first, are tried pushed straight away from that face
+    /// by up to maxMm; the first push that raises the tets around the node is made. Records the
+    /// volume each label gains or loses, for the final volume check.
+    bool pushInterfaceNode(std::int32_t t, double maxMm, std::map<Label, double>& volumeChange, SliverStats& st) {
+        if (!alive_[std::size_t(t)] || tetScore(t) >= target_) return false;
+        const Tet e = m_.tets[std::size_t(t)];
+        std::array<std::pair<double, int>, 4> order;
+        std::array<Vec3, 4> away;
+        for (int k = 0; k < 4; ++k) {
+            const Vec3 &a = P(e[std::size_t((k + 1) % 4)]), &b = P(e[std::size_t((k + 2) % 4)]), &c = P(e[std::size_t((k + 3) % 4)]);
+            Vec3 n = (b - a).cross(c - a).normalized();
+            if (n.dot(P(e[std::size_t(k)]) - a) < 0) n = -n;
+            away[std::size_t(k)] = n;
+            order[std::size_t(k)] = {n.dot(P(e[std::size_t(k)]) - a), k};
+        }
+        std::sort(order.begin(), order.end());
+        for (const auto& [height, k] : order) {
+            const std::int32_t v = e[std::size_t(k)];
+            if (std::size_t(v) >= fixed_.size() || !fixed_[std::size_t(v)] || pushed_.count(v) || onMeshBoundary(v)) continue;
+            std::vector<Tet> tets;
+            for (auto s : star_[std::size_t(v)]) tets.push_back(m_.tets[std::size_t(s)]);
+            const Objective before = scoreWith(tets, v, P(v));
+            Objective best = before;
+            double bestStep = 0;
+            for (int i = 1; i <= 8; ++i) {
+                const double step = maxMm * i / 8.0;
+                const Objective o = scoreWith(tets, v, P(v) + step * away[std::size_t(k)]);
+                if (o.betterThan(best)) {
+                    best = o;
+                    bestStep = step;
+                }
+            }
+            if (bestStep == 0) continue;
+            for (auto s : star_[std::size_t(v)]) volumeChange[m_.labels[std::size_t(s)]] -= tetVolume(s);
+            moveNode(v, P(v) + bestStep * away[std::size_t(k)]);
+            for (auto s : star_[std::size_t(v)]) volumeChange[m_.labels[std::size_t(s)]] += tetVolume(s);
+            pushed_.insert(v);
+            ++st.interfacePushes;
+            st.largestPushMm = std::max(st.largestPushMm, bestStep);
+            return true;
+        }
+        return false;
+    }
+
     void compact() {
         TetMesh out;
         out.nodes = std::move(m_.nodes);
@@ -177,6 +223,24 @@ public:
 
 private:
     const Vec3& P(std::int32_t v) const { return m_.nodes[std::size_t(v)]; }
+
+    double tetVolume(std::int32_t t) const {
+        const Tet& e = m_.tets[std::size_t(t)];
+        return signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3])) / 6.0;
+    }
+
+    /// Whether v lies on the mesh's outer boundary (a face of a tet around it has no tet across).
+    bool onMeshBoundary(std::int32_t v) const {
+        for (auto t : star_[std::size_t(v)]) {
+            const Tet& e = m_.tets[std::size_t(t)];
+            for (int k = 0; k < 4; ++k) {
+                if (e[std::size_t(k)] == v) continue;
+                std::int32_t f[3];
+                if (acrossFace(t, k, f) < 0) return true;
+            }
+        }
+        return false;
+    }
 
     /// Whether an operation makes a candidate whose tets score `after` in place of `before`:
     /// when it raises them, or in a lookahead only the forced (k-th valid) candidate, which may
@@ -928,6 +992,7 @@ private:
     double target_;
     bool interfaceInsertions_;
     std::vector<char> alive_, fixed_;
+    std::set<std::int32_t> pushed_;  ///< interface nodes pushed once already
     std::vector<std::vector<std::int32_t>> star_;
     // Lookahead: the candidate an operation must make (-1: only one that helps), candidates seen.
     int forcedCandidate_ = -1, candidatesSeen_ = 0;
@@ -979,11 +1044,23 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
             bad = imp.badTets();
             if (!changed) ++depth;
         }
+        // The last resort, then the usual operations again around what it moved.
+        std::map<Label, double> pushedVolume;
+        if (options.interfacePushMm > 0 && !bad.empty()) {
+            bool changed = false;
+            for (auto t : bad) changed |= imp.pushInterfaceNode(t, options.interfacePushMm, pushedVolume, st);
+            for (int pass = 0; changed && pass < options.maxPasses; ++pass) {
+                ++st.passes;
+                changed = false;
+                for (auto t : imp.badTets()) changed |= imp.improve(t, st);
+            }
+        }
         imp.compact();
         // Every operation re-triangulates a cavity of one region (or splits an interface in
-        // place): a region whose volume changed means a bug, and a mesh not to hand on.
+        // place; pushes move it by what they recorded): a region whose volume changed otherwise
+        // means a bug, and a mesh not to hand on.
         for (const auto& [label, volume] : labelVolumesMm3(mesh))
-            if (std::abs(volume - volumesBefore.at(label)) > 1e-9 * volumesBefore.at(label))
+            if (std::abs(volume - volumesBefore.at(label) - pushedVolume[label]) > 1e-9 * volumesBefore.at(label))
                 throw Error("improveSlivers", "internal error: the volume of label " + std::to_string(label) + " changed from " +
                                                   std::to_string(volumesBefore.at(label)) + " to " + std::to_string(volume) + " mm^3");
     }

@@ -466,6 +466,7 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
             SliverOptions so;
             so.targetMinDihedralDeg = options.minDihedralDeg;
             so.lookaheadDepth = options.sliverLookaheadDepth;
+            so.interfacePushMm = options.sliverInterfacePushMm;
             improveSlivers(raw.mesh, so, &slivers);
         }
         const QualityStats q = measureQuality(raw.mesh, options.minDihedralDeg);

@@ -35,9 +35,10 @@ struct TetOptions {
     bool checkIntersections = true;
     int repairAttempts = 2;         ///< extra runs with stronger optimisation when min dihedral is low
     /// After TetGen, raise tets below minDihedralDeg by smoothing, flips and splits inside the
-    /// regions (tet/ImproveSlivers.h); interfaces are untouched.
+    /// regions (tet/ImproveSlivers.h); interfaces are untouched but for its last resort's pushes.
     bool improveSlivers = true;
     int sliverLookaheadDepth = 1;   ///< SliverOptions::lookaheadDepth of that improvement
+    double sliverInterfacePushMm = 0.005;  ///< SliverOptions::interfacePushMm of that improvement
     /// Rounds of local refinement when tets under minDihedralDeg are left: the surface edges
     /// around them are split at their midpoints (the surface does not move) and the kept run is
     /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h). Off by

@@ -110,7 +110,9 @@ TEST(ImproveSlivers, RepairsFlatTetsWithoutTouchingInterfacesOrVolumes) {
     ASSERT_GT(q0.belowDihedralThreshold, 20u) << "the distortion must create slivers to repair";
 
     SliverStats st;
-    improveSlivers(m, SliverOptions{}, &st);
+    SliverOptions noPush;
+    noPush.interfacePushMm = 0;  // interfaces must stay where they are (the pushes: their own test)
+    improveSlivers(m, noPush, &st);
     const QualityStats q1 = measureQuality(m, 10.0);
     std::printf("below 10 deg: %zu -> %zu, min dihedral %.2f -> %.2f deg (smoothed %zu, 2-3 %zu, 3-2 %zu, splits %zu+%zu)\n",
                 q0.belowDihedralThreshold, q1.belowDihedralThreshold, q0.minDihedralDeg, q1.minDihedralDeg, st.smoothed,
@@ -132,7 +134,7 @@ TEST(ImproveSlivers, RepairsFlatTetsWithoutTouchingInterfacesOrVolumes) {
 
     // without interface insertions the interface faces themselves stay exactly as they were
     TetMesh kept = distortedTwoRegionGrid();
-    SliverOptions inside;
+    SliverOptions inside = noPush;
     inside.interfaceInsertions = false;
     improveSlivers(kept, inside);
     EXPECT_EQ(interfaceFaces(kept), interfaceFaces(before));
@@ -150,6 +152,7 @@ TEST(ImproveSlivers, InterfaceInsertionsMendSliversBetweenTwoCloseInterfaces) {
     SliverOptions noInsertions, insertions;  // both without the lookahead, measured on its own below
     noInsertions.interfaceInsertions = false;
     noInsertions.lookaheadDepth = insertions.lookaheadDepth = 0;
+    noInsertions.interfacePushMm = insertions.interfacePushMm = 0;
     SliverStats s0, s1;
     improveSlivers(inside, noInsertions, &s0);
     improveSlivers(across, insertions, &s1);
@@ -171,11 +174,12 @@ TEST(ImproveSlivers, LookaheadMendsWhatNoSingleOperationCanAndUndoesWhatDoesNotH
     // mends more, and the trials that do not help leave no trace (geometry, validity).
     const TetMesh raw = rawThinPdlMesh(0.045);
     TetMesh climbed = raw, looked = raw;
-    SliverOptions noLookahead;
+    SliverOptions noLookahead, lookahead;
     noLookahead.lookaheadDepth = 0;
+    noLookahead.interfacePushMm = lookahead.interfacePushMm = 0;
     SliverStats s0, s1;
     improveSlivers(climbed, noLookahead, &s0);
-    improveSlivers(looked, SliverOptions{}, &s1);
+    improveSlivers(looked, lookahead, &s1);
     std::printf("below 10 deg: %zu from TetGen, %zu hill climbing, %zu with the lookahead (%zu kept, min %.2f -> %.2f deg)\n",
                 s0.badBefore, s0.badAfter, s1.badAfter, s1.lookaheads, s0.minDihedralAfterDeg, s1.minDihedralAfterDeg);
     ASSERT_GT(s0.badAfter, 0u) << "the hill climbing must leave tets for the lookahead";
@@ -187,9 +191,64 @@ TEST(ImproveSlivers, LookaheadMendsWhatNoSingleOperationCanAndUndoesWhatDoesNotH
     expectSameGeometry(looked, raw);
     // deterministic, undone trials included
     TetMesh again = raw;
-    improveSlivers(again, SliverOptions{});
+    improveSlivers(again, lookahead);
     EXPECT_EQ(again.tets, looked.tets);
     EXPECT_EQ(again.nodes, looked.nodes);
+}
+
+/// A tooth lip `liftMm` thick on the outside: one flat tooth tet over a boundary triangle of edge
+/// 0.05 mm, its apex v an interface node under three PDL tets (v is inside the mesh).
+TetMesh thinLip(double liftMm) {
+    const double s = 0.05;
+    const Vec3 a(0, 0, 0), b(s, 0, 0), c(s / 2, s * std::sqrt(3.0) / 2, 0);
+    const Vec3 g = (a + b + c) / 3.0;
+    TetMesh m;
+    m.nodes = {a, b, c, g + Vec3(0, 0, liftMm), g + Vec3(0, 0, s)};
+    const auto add = [&](Tet e, Label l) {
+        if (volume(TetMesh{m.nodes, {e}, {l}}, 0) < 0) std::swap(e[2], e[3]);
+        m.tets.push_back(e);
+        m.labels.push_back(l);
+    };
+    add({0, 1, 2, 3}, kTooth);
+    add({0, 1, 3, 4}, pdlLabel(24));
+    add({1, 2, 3, 4}, pdlLabel(24));
+    add({2, 0, 3, 4}, pdlLabel(24));
+    return m;
+}
+
+TEST(ImproveSlivers, LastResortPushesAnInterfaceNodeOffAThinLipWithinItsBound) {
+    // A lip 0.002 mm thick (as the shared mandible's fine extraction has at a few crest spots):
+    // its tet is 7.9 degrees whatever the triangulation, until its interface node moves.
+    const TetMesh lip = thinLip(0.002);
+    ASSERT_LT(measureQuality(lip, 10.0).minDihedralDeg, 10.0);
+    TetMesh kept = lip, pushed = lip;
+    SliverOptions off;
+    off.interfacePushMm = 0;
+    SliverStats s0, s1;
+    improveSlivers(kept, off, &s0);
+    improveSlivers(pushed, SliverOptions{}, &s1);
+    std::printf("lip: %zu under 10 deg without pushes (min %.2f deg); %zu with %zu push of %.4f mm (min %.2f deg)\n", s0.badAfter,
+                s0.minDihedralAfterDeg, s1.badAfter, s1.interfacePushes, s1.largestPushMm, s1.minDihedralAfterDeg);
+    EXPECT_GT(s0.badAfter, 0u) << "nothing but a push mends the lip";
+    EXPECT_EQ(s1.badAfter, 0u);
+    EXPECT_EQ(s1.interfacePushes, 1u);
+    EXPECT_LE(s1.largestPushMm, SliverOptions{}.interfacePushMm);
+    // only v moved, straight up (away from the boundary triangle), by the reported push
+    ASSERT_GE(pushed.nodes.size(), lip.nodes.size());
+    for (std::size_t v = 0; v < lip.nodes.size(); ++v) {
+        if (v == 3) continue;
+        EXPECT_EQ(pushed.nodes[v], lip.nodes[v]) << "node " << v;
+    }
+    const Vec3 move = pushed.nodes[3] - lip.nodes[3];
+    EXPECT_NEAR(move.head<2>().norm(), 0.0, 1e-12);
+    EXPECT_NEAR(move.z(), s1.largestPushMm, 1e-12);
+    EXPECT_TRUE(validateTetMesh(pushed, {}).valid());
+    for (std::size_t t = 0; t < pushed.tets.size(); ++t) EXPECT_GT(volume(pushed, t), 0.0) << t;
+    // the mesh's outer surface is where it was: the whole volume is unchanged
+    double total0 = 0, total1 = 0;
+    for (const auto& [label, v] : labelVolumesMm3(lip)) total0 += v;
+    for (const auto& [label, v] : labelVolumesMm3(pushed)) total1 += v;
+    EXPECT_NEAR(total1, total0, 1e-15);
 }
 
 TEST(ImproveSlivers, LeavesAGoodMeshAloneAndIsDeterministic) {
