@@ -11,7 +11,8 @@
 //  - topology: the link condition on the whole complex (Dey et al. 1999), so no region vanishes,
 //    splits or changes genus, and no two triangles come to share their three vertices.
 //  - error: every input vertex removed so far stays within the bound of its interface (label
-//    pair; on bone / outside looser far from the teeth) of the output triangles of that
+//    pair; on bone / outside looser far from the teeth; on a thin plate, PlateThickness.h, a
+//    quarter of the plate's thickness at most) of the output triangles of that
 //    interface, and every removed curve vertex within the bound of its curve (tracked exactly;
 //    the reported maximum is this one-sided Hausdorff distance from the input vertices to the
 //    output); the other way, the centroid and edge midpoints of every new triangle stay within
@@ -19,8 +20,9 @@
 //    vertex of the collapse, an upper bound of the true distance).
 //  - quality: no new triangle has an angle below minAngleDeg unless it replaces a triangle that
 //    was already worse, no normal turns by more than maxNormalTurnDeg, no new edge is longer than
-//    the interface's maximum edge, and no region comes to span less than minWedgeDeg around an
-//    edge (RegionWedges.h: such a wedge caps the dihedral angles of every tet in it).
+//    the interface's maximum edge (on a thin plate, 4 times its thickness), and no region comes to
+//    span less than minWedgeDeg around an edge (RegionWedges.h: such a wedge caps the dihedral
+//    angles of every tet in it).
 //  - intersections: each new triangle is tested exactly (filters/SelfIntersections.h predicates)
 //    against the triangles around the collapse; the whole output is then checked (Embree broad
 //    phase, exact predicates) and, if two sheets met elsewhere, everything is redone testing each
@@ -92,10 +94,10 @@ struct SimplifyStats {
     std::array<std::size_t, 7> minAngleHistogram{};
     double seconds = 0;
     bool exhaustiveRerun = false;  ///< the local intersection test missed one: redone exhaustively
-    std::size_t cornerSplits = 0;
+    std::size_t cornerSplits = 0;     ///< edges split so no region has a 3-triangle corner (SplitCorners.h)
     std::size_t plateVertices = 0;    ///< input vertices on a thin plate (SimplifyOptions::plateMaxMm)
     double minWedgeDeg = 360;         ///< smallest region wedge of the output (RegionWedges.h)
-    std::size_t edgesBelowMinWedge = 0; ///< output edges with a wedge under SimplifyOptions::minWedgeDeg  ///< edges split so no region has a 3-triangle corner (SplitCorners.h)
+    std::size_t edgesBelowMinWedge = 0; ///< output edges with a wedge under SimplifyOptions::minWedgeDeg
 };
 
 /// The stats as recorded in run.json and `jawmesh surface --json`.
