@@ -1,6 +1,7 @@
 #include "filters/PlateThickness.h"
 
 #include "filters/RayTriangle.h"
+#include "io/VertexTriangles.h"
 
 #include <tbb/parallel_for.h>
 
@@ -65,19 +66,10 @@ std::vector<float> plateThicknessMm(const InterfaceComplex& complex, const std::
     const double maxMm = options.maxMm;
     const double cosPlate = std::cos(options.maxAngleDeg * kPi / 180.0);
 
-    // Vertex -> triangles.
-    std::vector<std::uint32_t> start(V.size() + 1, 0);
-    for (const Tri& f : T)
-        for (std::int32_t v : f) ++start[std::size_t(v) + 1];
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<std::int32_t> around(start.back());
-    {
-        std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-        for (std::size_t t = 0; t < T.size(); ++t)
-            for (std::int32_t v : T[t]) around[next[std::size_t(v)]++] = std::int32_t(t);
-    }
+    const VertexTriangles around = vertexTriangles(T, V.size());
     std::vector<Vec3> normal(T.size());  // unit, into sides[t][0]
     std::vector<float> minX(T.size()), maxX(T.size());
+    float widest = 0;
     BBox box;
     for (std::size_t t = 0; t < T.size(); ++t) {
         const Vec3 &a = V[std::size_t(T[t][0])], &b = V[std::size_t(T[t][1])], &c = V[std::size_t(T[t][2])];
@@ -85,6 +77,7 @@ std::vector<float> plateThicknessMm(const InterfaceComplex& complex, const std::
         normal[t] = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
         minX[t] = float(std::min({a.x(), b.x(), c.x()}));
         maxX[t] = float(std::max({a.x(), b.x(), c.x()}));
+        widest = std::max(widest, maxX[t] - minX[t]);
         box.extend(a);
         box.extend(b);
         box.extend(c);
@@ -93,11 +86,9 @@ std::vector<float> plateThicknessMm(const InterfaceComplex& complex, const std::
     std::vector<std::int32_t> byX(T.size());
     std::iota(byX.begin(), byX.end(), 0);
     std::sort(byX.begin(), byX.end(), [&](std::int32_t a, std::int32_t b) { return minX[std::size_t(a)] < minX[std::size_t(b)] || (minX[std::size_t(a)] == minX[std::size_t(b)] && a < b); });
-    float widest = 0;
-    for (std::size_t t = 0; t < T.size(); ++t) widest = std::max(widest, maxX[t] - minX[t]);
     std::vector<std::int32_t> verts;
     for (std::size_t v = 0; v < V.size(); ++v)
-        if ((measure.empty() || measure[v]) && start[v + 1] > start[v]) verts.push_back(std::int32_t(v));
+        if ((measure.empty() || measure[v]) && around.count(std::int32_t(v)) > 0) verts.push_back(std::int32_t(v));
     std::sort(verts.begin(), verts.end(), [&](std::int32_t a, std::int32_t b) { return V[std::size_t(a)].x() < V[std::size_t(b)].x() || (V[std::size_t(a)].x() == V[std::size_t(b)].x() && a < b); });
     const double slabMm = std::max(1.0, 4.0 * maxMm);
     const std::size_t slabs = std::size_t(std::ceil((box.max.x() - box.min.x()) / slabMm)) + 1;
@@ -132,8 +123,8 @@ std::vector<float> plateThicknessMm(const InterfaceComplex& complex, const std::
             const std::int32_t p = *vi;
             const Vec3& o = V[std::size_t(p)];
             sheets.clear();
-            for (std::uint32_t i = start[std::size_t(p)]; i < start[std::size_t(p) + 1]; ++i) {
-                const std::size_t t = std::size_t(around[i]);
+            for (const std::int32_t* ti = around.begin(p); ti != around.end(p); ++ti) {
+                const std::size_t t = std::size_t(*ti);
                 const auto& sd = complex.sides[t];
                 const Label lo = std::min(sd[0], sd[1]), hi = std::max(sd[0], sd[1]);
                 const Tri& f = T[t];
@@ -168,10 +159,10 @@ std::vector<float> plateThicknessMm(const InterfaceComplex& complex, const std::
                     // one: a fine triangle alone may lean by 45 degrees (voxel steps).
                     Vec3 into = Vec3::Zero();
                     for (std::int32_t q : T[std::size_t(hit)])
-                        for (std::uint32_t i = start[std::size_t(q)]; i < start[std::size_t(q) + 1]; ++i) {
-                            const auto& qs = complex.sides[std::size_t(around[i])];
-                            if (qs[0] == hs[0] && qs[1] == hs[1]) into += normal[std::size_t(around[i])];
-                            else if (qs[0] == hs[1] && qs[1] == hs[0]) into -= normal[std::size_t(around[i])];
+                        for (const std::int32_t* it = around.begin(q); it != around.end(q); ++it) {
+                            const auto& qs = complex.sides[std::size_t(*it)];
+                            if (qs[0] == hs[0] && qs[1] == hs[1]) into += normal[std::size_t(*it)];
+                            else if (qs[0] == hs[1] && qs[1] == hs[0]) into -= normal[std::size_t(*it)];
                         }
                     if (hs[0] != region) into = -into;
                     if (-into.dot(dir) < cosPlate * into.norm()) continue;  // a wedge, or not leaving the region

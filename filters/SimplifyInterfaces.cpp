@@ -9,6 +9,7 @@
 #include "filters/ShellSeeds.h"
 #include "filters/TriangleGeometry.h"
 #include "io/Error.h"
+#include "io/VertexTriangles.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -153,23 +154,14 @@ bool separatedByPlane(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const Tri
 /// The input surface around each input vertex, for the distance from new triangles back to it.
 struct InputSurface {
     const std::vector<Tri>* tris = nullptr;
-    std::vector<std::uint32_t> start;  ///< per input vertex: its triangles are list[start[v], start[v + 1])
-    std::vector<std::int32_t> list;
+    VertexTriangles around;
 
-    explicit InputSurface(const InterfaceComplex& input) : tris(&input.surface.triangles) {
-        start.assign(input.surface.vertices.size() + 1, 0);
-        for (const Tri& f : *tris)
-            for (std::int32_t v : f) ++start[std::size_t(v) + 1];
-        for (std::size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
-        list.resize(start.back());
-        std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-        for (std::size_t t = 0; t < tris->size(); ++t)
-            for (std::int32_t v : (*tris)[t]) list[next[std::size_t(v)]++] = std::int32_t(t);
-    }
+    explicit InputSurface(const InterfaceComplex& input)
+        : tris(&input.surface.triangles), around(vertexTriangles(input.surface.triangles, input.surface.vertices.size())) {}
     template <typename F>
     bool anyAround(std::int32_t v, F&& f) const {
-        for (std::uint32_t i = start[std::size_t(v)]; i < start[std::size_t(v) + 1]; ++i)
-            if (f(list[i])) return true;
+        for (const std::int32_t* t = around.begin(v); t != around.end(v); ++t)
+            if (f(*t)) return true;
         return false;
     }
 };

@@ -1,6 +1,7 @@
 #include "levelset/PhantomSurface.h"
 
 #include "io/Error.h"
+#include "io/VertexTriangles.h"
 #include "levelset/PhantomRandom.h"
 
 #include <openvdb/tools/SignedFloodFill.h>
@@ -129,19 +130,14 @@ void jitterTangentially(SurfaceMesh& mesh, double amplitudeMm, std::uint64_t see
     auto& V = mesh.vertices;
     const auto& F = mesh.triangles;
     const std::size_t nv = V.size();
-    std::vector<std::int32_t> start(nv + 1, 0), inc(3 * F.size());
-    for (const Tri& t : F)
-        for (int k = 0; k < 3; ++k) ++start[static_cast<std::size_t>(t[k]) + 1];
-    for (std::size_t i = 0; i < nv; ++i) start[i + 1] += start[i];
-    std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t f = 0; f < F.size(); ++f)
-        for (int k = 0; k < 3; ++k) inc[static_cast<std::size_t>(fill[static_cast<std::size_t>(F[f][k])]++)] = static_cast<std::int32_t>(f);
+    const VertexTriangles around = vertexTriangles(F, nv);
 
     auto normal = [&](const Tri& t) -> Vec3 { return (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]); };
     const double cosLimit = 0.5;
     for (std::size_t i = 0; i < nv; ++i) {
+        const auto vi = static_cast<std::int32_t>(i);
         Vec3 n = Vec3::Zero();
-        for (std::int32_t k = start[i]; k < start[i + 1]; ++k) n += normal(F[static_cast<std::size_t>(inc[k])]);
+        for (const std::int32_t* f = around.begin(vi); f != around.end(vi); ++f) n += normal(F[static_cast<std::size_t>(*f)]);
         if (n.squaredNorm() == 0) continue;
         n.normalize();
         const std::uint64_t h = splitMix64(seed ^ splitMix64(i));
@@ -149,12 +145,12 @@ void jitterTangentially(SurfaceMesh& mesh, double amplitudeMm, std::uint64_t see
         r -= r.dot(n) * n;
         const Vec3 old = V[i];
         std::vector<Vec3> before;
-        for (std::int32_t k = start[i]; k < start[i + 1]; ++k) before.push_back(normal(F[static_cast<std::size_t>(inc[k])]));
+        for (const std::int32_t* f = around.begin(vi); f != around.end(vi); ++f) before.push_back(normal(F[static_cast<std::size_t>(*f)]));
         for (double scale : {1.0, 0.5, 0.0}) {
             V[i] = old + r * (amplitudeMm * scale);
             bool ok = true;
-            for (std::int32_t k = start[i]; k < start[i + 1] && ok; ++k) {
-                const Vec3 a = before[static_cast<std::size_t>(k - start[i])], b = normal(F[static_cast<std::size_t>(inc[k])]);
+            for (const std::int32_t* f = around.begin(vi); f != around.end(vi) && ok; ++f) {
+                const Vec3 a = before[static_cast<std::size_t>(f - around.begin(vi))], b = normal(F[static_cast<std::size_t>(*f)]);
                 ok = a.dot(b) > cosLimit * a.norm() * b.norm();
             }
             if (ok) break;

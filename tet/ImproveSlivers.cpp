@@ -184,7 +184,7 @@ public:
         std::sort(order.begin(), order.end());
         for (const auto& [height, k] : order) {
             const std::int32_t v = e[std::size_t(k)];
-            if (std::size_t(v) >= fixed_.size() || !fixed_[std::size_t(v)] || pushed_.count(v) || onMeshBoundary(v)) continue;
+            if (!fixed_[std::size_t(v)] || pushed_.count(v) || onMeshBoundary(v)) continue;
             std::vector<Tet> tets;
             for (auto s : star_[std::size_t(v)]) tets.push_back(m_.tets[std::size_t(s)]);
             const Objective before = scoreWith(tets, v, P(v));
@@ -199,9 +199,9 @@ public:
                 }
             }
             if (bestStep == 0) continue;
-            for (auto s : star_[std::size_t(v)]) volumeChange[m_.labels[std::size_t(s)]] -= tetVolume(s);
+            for (auto s : star_[std::size_t(v)]) volumeChange[m_.labels[std::size_t(s)]] -= volumeOf(s);
             moveNode(v, P(v) + bestStep * away[std::size_t(k)]);
-            for (auto s : star_[std::size_t(v)]) volumeChange[m_.labels[std::size_t(s)]] += tetVolume(s);
+            for (auto s : star_[std::size_t(v)]) volumeChange[m_.labels[std::size_t(s)]] += volumeOf(s);
             pushed_.insert(v);
             ++st.interfacePushes;
             st.largestPushMm = std::max(st.largestPushMm, bestStep);
@@ -224,9 +224,9 @@ public:
 private:
     const Vec3& P(std::int32_t v) const { return m_.nodes[std::size_t(v)]; }
 
-    double tetVolume(std::int32_t t) const {
+    double volumeOf(std::int32_t t) const {
         const Tet& e = m_.tets[std::size_t(t)];
-        return signedVolume6(P(e[0]), P(e[1]), P(e[2]), P(e[3])) / 6.0;
+        return signedTetVolume(P(e[0]), P(e[1]), P(e[2]), P(e[3]));
     }
 
     /// Whether v lies on the mesh's outer boundary (a face of a tet around it has no tet across).
