@@ -21,7 +21,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     const int runs = argc > 2 ? std::max(1, std::stoi(argv[2])) : 3;
-    const jawmesh::InterfaceComplex fine = jawmesh::extractInterfaces(jawmesh::readLabelField(argv[1]));
+    jawmesh::ExtractOptions fineOptions;
+    fineOptions.adaptive.maxLevel = 0;  // plates are measured on the fine extraction
+    const jawmesh::InterfaceComplex fine = jawmesh::extractInterfaces(jawmesh::readLabelField(argv[1]), fineOptions);
     const jawmesh::SimplifyOptions o;
     const std::vector<char> near = jawmesh::verticesNearTeeth(fine, o.boneNearTeethMm);
     std::vector<double> seconds;

@@ -40,10 +40,13 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
     const auto tExtract = std::chrono::steady_clock::now();
     ExtractOptions extract;
     extract.findSeeds = !opt.simplifyOn;  // simplification places them on its output
-    InterfaceComplex complex = extractInterfaces(field, extract, progress);
+    extract.adaptive = matchedTo(opt.simplify, extract.adaptive);
+    ExtractStats extractStats;
+    InterfaceComplex complex = extractInterfaces(field, extract, progress, &extractStats);
     const double secondsExtract = secondsSince(tExtract);
     SimplifyStats stats;
     if (opt.simplifyOn) complex = simplifyInterfaces(complex, opt.simplify, progress, &stats);
+    else complex = withoutCarried(std::move(complex));
 
     const std::string jaw = jawName(field.jaw);
     StagedFolder staged(opt.output);
@@ -58,6 +61,7 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
                         {"seconds", {{"read", secondsRead}, {"extract", secondsExtract}, {"simplify", stats.seconds},
                                      {"total", secondsSince(start)}}},
                         {"peak_memory_bytes", peakResidentMemoryBytes()}};
+    j["adaptive"] = toJson(extractStats.adaptive);
     if (opt.simplifyOn) {
         j["simplify"] = toJson(stats);
         j["simplify"]["options"] = toJson(opt.simplify);

@@ -164,6 +164,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         log.run(jaw + ": interface surface", progress, [&] {
             ExtractOptions extract = options.extract;
             extract.findSeeds = false;  // simplification places them on its output
+            extract.adaptive = matchedTo(options.simplify, extract.adaptive);
             return extractInterfaces(field, extract, progress, &extractStats);
         });
     field = LabelField{};  // the grids are no longer needed; free them before TetGen
@@ -175,7 +176,8 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
                          {"enclosed_outside_pockets_filled",
                           {{"pockets", extractStats.pocketsFilled}, {"voxels", extractStats.pocketVoxelsFilled}}},
                          {"region_fragments_absorbed",
-                          {{"fragments", extractStats.fragmentsAbsorbed}, {"voxels", extractStats.fragmentVoxelsAbsorbed}}}};
+                          {{"fragments", extractStats.fragmentsAbsorbed}, {"voxels", extractStats.fragmentVoxelsAbsorbed}}},
+                         {"adaptive", toJson(extractStats.adaptive)}};
 
     TetStats tetStats;
     TetMesh mesh = log.run(jaw + ": tetrahedralize", progress, [&] {

@@ -1,5 +1,7 @@
 #include "filters/ExtractInterfaces.h"
 
+#include "filters/AdaptiveCells.h"
+#include "filters/DualQuads.h"
 #include "filters/LabelEdges.h"
 #include "filters/RegionSeeds.h"
 #include "filters/SmallComponents.h"
@@ -132,39 +134,33 @@ InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions
     });
     stage.update(0.6);
 
-    out.surface.triangles.resize(2 * edges.size());
-    out.sides.resize(2 * edges.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 4096), [&](const auto& r) {
-        progress.checkCancelled();
-        auto acc = labels->getConstAccessor();
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            const LabelEdge& e = edges[i];
-            const int d1 = (e.axis + 1) % 3, d2 = (e.axis + 2) % 3;
-            Coord c[4] = {e.voxel, e.voxel, e.voxel, e.voxel};  // normal along +axis
-            c[0][d1] -= 1; c[0][d2] -= 1;
-            c[1][d2] -= 1;
-            c[3][d1] -= 1;
-            std::array<std::int32_t, 4> q;
-            for (int k = 0; k < 4; ++k) q[k] = std::int32_t(dualCellIndex(cells, c[k]));
-            Coord w = e.voxel;
-            w[e.axis] += 1;
-            const Label la = acc.getValue(e.voxel), lb = acc.getValue(w);
-            const std::array<Label, 2> sides = {std::min(la, lb), std::max(la, lb)};
-            // the quad's normal points into lb; flip so that it points into sides[0]
-            if ((lb != sides[0]) != mirrored) std::swap(q[1], q[3]);
-            const auto& V = out.surface.vertices;
-            const bool diag02 = (V[q[0]] - V[q[2]]).squaredNorm() <= (V[q[1]] - V[q[3]]).squaredNorm();
-            if (diag02) {
-                out.surface.triangles[2 * i] = {q[0], q[1], q[2]};
-                out.surface.triangles[2 * i + 1] = {q[0], q[2], q[3]};
-            } else {
-                out.surface.triangles[2 * i] = {q[0], q[1], q[3]};
-                out.surface.triangles[2 * i + 1] = {q[1], q[2], q[3]};
+    const std::vector<DualQuad> quads = dualQuadsOf(edges, cells, *labels, mirrored);
+    stage.update(0.65);
+    AdaptiveSurface adaptive =
+        adaptiveSurface(*labels, cells, quads, out.surface.vertices, options.adaptive, progress,
+                        stats ? &stats->adaptive : nullptr);
+    // The dual cells that are corners first, then the carried ones, each in cell order.
+    std::vector<std::int32_t> vertexId(cells.size(), -1);
+    for (const Tri& t : adaptive.triangles)
+        for (std::int32_t c : t) vertexId[std::size_t(c)] = -2;
+    for (const auto& carried : adaptive.carried)
+        for (std::int32_t c : carried) vertexId[std::size_t(c)] = -3;
+    std::vector<Vec3> vertices;
+    for (int pass : {-2, -3})
+        for (std::size_t c = 0; c < cells.size(); ++c)
+            if (vertexId[c] == pass) {
+                vertexId[c] = std::int32_t(vertices.size());
+                vertices.push_back(out.surface.vertices[c]);
+                if (pass == -2) out.sampleErrorMm.push_back(adaptive.sampleErrorMm[c]);
             }
-            out.sides[2 * i] = sides;
-            out.sides[2 * i + 1] = sides;
-        }
-    });
+    out.surface.vertices = std::move(vertices);
+    for (Tri& t : adaptive.triangles)
+        for (std::int32_t& c : t) c = vertexId[std::size_t(c)];
+    for (auto& carried : adaptive.carried)
+        for (std::int32_t& c : carried) c = vertexId[std::size_t(c)];
+    out.surface.triangles = std::move(adaptive.triangles);
+    out.sides = std::move(adaptive.sides);
+    out.carried = std::move(adaptive.carried);
     stage.update(0.8);
     if (options.findSeeds) out.seeds = findRegionSeeds(*labels, field.distances, progress);
     return out;

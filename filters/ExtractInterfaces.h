@@ -16,6 +16,7 @@
 // `cellMargin` so neighbouring cells can never swap their vertices.
 #pragma once
 
+#include "filters/AdaptiveCells.h"
 #include "io/InterfaceComplex.h"
 #include "io/Progress.h"
 #include "levelset/LabelField.h"
@@ -39,6 +40,9 @@ struct ExtractOptions {
     /// Find one seed per region component (findRegionSeeds). Off when the caller places seeds
     /// itself, as simplification does (filters/ShellSeeds.h): the segmentation is then wasted.
     bool findSeeds = true;
+    /// Blocks of dual cells merged into one vertex where certified (AdaptiveCells.h); maxLevel 0
+    /// gives the fine extraction.
+    AdaptiveOptions adaptive;
 };
 
 /// What extraction changed in the labels before meshing them (recorded in run.json).
@@ -47,6 +51,7 @@ struct ExtractStats {
     std::size_t pocketVoxelsFilled = 0;
     std::size_t fragmentsAbsorbed = 0;   ///< region fragments given to their surroundings
     std::size_t fragmentVoxelsAbsorbed = 0;
+    AdaptiveStats adaptive;              ///< the adaptive extraction (AdaptiveCells.h)
 };
 
 /// The labels extraction meshes: a copy of field.labels with diagonal-only contacts repaired

@@ -178,6 +178,8 @@ struct State {
     std::vector<float> err;                      ///< per input vertex: distance to its output triangle
     std::vector<char> nearTeeth;                 ///< per input vertex (filters/NearTeeth.h)
     const std::vector<float>* plateMm = nullptr; ///< per input vertex: thin plate it bounds (PlateThickness.h)
+    /// per corner of the input: error its triangles' samples already have (InterfaceComplex::sampleErrorMm)
+    const std::vector<float>* spentMm = nullptr;
     std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts;  ///< per curve edge
 };
 
@@ -356,13 +358,15 @@ private:
     }
 
     PairRule ruleFor(Label a, Label b) const {
-        const LabelKind ka = a == kOutsideLabel ? LabelKind::Outside : labelKind(a);
-        const LabelKind kb = b == kOutsideLabel ? LabelKind::Outside : labelKind(b);
+        const InterfaceBounds bounds = boundsOf(opt_);
+        const auto kind = [](Label l) { return l == kOutsideLabel ? LabelKind::Outside : labelKind(l); };
+        const LabelKind ka = kind(a), kb = kind(b);
         const auto has = [&](LabelKind k) { return ka == k || kb == k; };
-        if (has(LabelKind::Pdl) && has(LabelKind::Outside)) return {opt_.toothErrorMm, opt_.capMaxEdgeMm, opt_.toothErrorMm};
-        if (has(LabelKind::Pdl)) return {opt_.pdlErrorMm, opt_.pdlMaxEdgeMm, opt_.pdlErrorMm};
-        if (has(LabelKind::Tooth)) return {opt_.toothErrorMm, opt_.toothMaxEdgeMm, opt_.toothErrorMm};
-        return {opt_.boneErrorMm, opt_.boneMaxEdgeMm, std::max(opt_.boneErrorMm, opt_.boneFarErrorMm)};
+        const double maxEdge = has(LabelKind::Pdl) && has(LabelKind::Outside) ? opt_.capMaxEdgeMm
+                               : has(LabelKind::Pdl)                          ? opt_.pdlMaxEdgeMm
+                               : has(LabelKind::Tooth)                        ? opt_.toothMaxEdgeMm
+                                                                              : opt_.boneMaxEdgeMm;
+        return {bounds.boundMm(a, b, true), maxEdge, bounds.boundMm(a, b, false)};
     }
 
     std::uint64_t gkey(std::int32_t a, std::int32_t b) const { return edgeKey(gid_[std::size_t(a)], gid_[std::size_t(b)]); }
@@ -375,7 +379,9 @@ private:
     /// The error bound of input vertex p on triangle t's interface.
     double boundOf(std::int32_t p, std::int32_t t) const {
         const PairRule& r = rule(t);
-        return std::min(state_.nearTeeth[std::size_t(p)] ? r.errorMm : r.farErrorMm, plateBound(p));
+        const auto& S = *state_.spentMm;
+        const double spent = std::size_t(p) < S.size() ? double(S[std::size_t(p)]) : 0.0;
+        return std::max(0.0, std::min(state_.nearTeeth[std::size_t(p)] ? r.errorMm : r.farErrorMm, plateBound(p)) - spent);
     }
     /// How far a thin plate's sheet may move at input vertex p (infinite off plates).
     double plateBound(std::int32_t p) const {
@@ -705,13 +711,19 @@ private:
             const auto& C = newCorners_[m];
             const Vec3 samples[4] = {(C[0] + C[1] + C[2]) / 3.0, 0.5 * (C[0] + C[1]), 0.5 * (C[1] + C[2]), 0.5 * (C[2] + C[0])};
             for (const Vec3& x : samples) {
-                std::int32_t p = -1;
-                double d2 = std::numeric_limits<double>::infinity();
+                // p: the nearest input vertex (on the fine interface); c: the nearest corner, whose
+                // input triangles are searched (carried vertices have none)
+                std::int32_t p = -1, c = -1;
+                double d2 = std::numeric_limits<double>::infinity(), c2 = d2;
                 for (std::int32_t q : near_) {
                     const double e = (points_[std::size_t(q)] - x).squaredNorm();
                     if (e < d2) {
                         d2 = e;
                         p = q;
+                    }
+                    if (e < c2 && in.around.count(q) > 0) {
+                        c2 = e;
+                        c = q;
                     }
                 }
                 // near the teeth when any corner or that vertex is (NearTeeth.h): the tighter bound
@@ -724,10 +736,10 @@ private:
                     return squaredDistanceToTriangle(x, points_[std::size_t(f[0])], points_[std::size_t(f[1])],
                                                      points_[std::size_t(f[2])]) <= b2;
                 };
-                if (in.anyAround(p, within)) continue;
-                const bool second = in.anyAround(p, [&](std::int32_t t) {
+                if (in.anyAround(c, within)) continue;
+                const bool second = in.anyAround(c, [&](std::int32_t t) {
                     for (std::int32_t q : (*in.tris)[std::size_t(t)])
-                        if (q != p && in.anyAround(q, within)) return true;
+                        if (q != c && in.anyAround(q, within)) return true;
                     return false;
                 });
                 if (!second) return false;
@@ -926,6 +938,17 @@ nlohmann::json toJson(const SimplifyOptions& o) {
             {"plate_error_fraction", o.plateErrorFraction}, {"plate_edge_factor", o.plateEdgeFactor}};
 }
 
+InterfaceBounds boundsOf(const SimplifyOptions& o) {
+    return InterfaceBounds{o.toothErrorMm, o.pdlErrorMm, o.boneErrorMm, o.boneFarErrorMm};
+}
+
+AdaptiveOptions matchedTo(const SimplifyOptions& options, AdaptiveOptions adaptive) {
+    adaptive.bounds = boundsOf(options);
+    adaptive.boneNearTeethMm = options.boneNearTeethMm;
+    adaptive.minWedgeDeg = options.minWedgeDeg;
+    return adaptive;
+}
+
 std::string interfaceKind(Label a, Label b) {
     using K = LabelKind;
     const auto kind = [](Label l) { return l == kOutsideLabel ? K::Outside : labelKind(l); };
@@ -1073,6 +1096,10 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     const auto start = std::chrono::steady_clock::now();
     if (input.sides.size() != input.surface.triangles.size())
         throw Error("simplification: one label pair per triangle is required");
+    if (!input.carried.empty() && input.carried.size() != input.surface.triangles.size())
+        throw Error("simplification: carried vertices must be given per triangle");
+    if (input.sampleErrorMm.size() > input.surface.vertices.size())
+        throw Error("simplification: more sample errors than vertices");
     for (double x : {options.toothErrorMm, options.pdlErrorMm, options.boneErrorMm, options.boneFarErrorMm, options.boneNearTeethMm,
                      options.pdlMaxEdgeMm, options.capMaxEdgeMm, options.toothMaxEdgeMm, options.boneMaxEdgeMm,
                      options.plateMaxMm, options.plateErrorFraction, options.plateEdgeFactor})
@@ -1085,9 +1112,16 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
         throw Error("simplification: minimum region wedge must be in [0, 90) degrees");
     if (!(options.blockMm >= 0)) throw Error("simplification: block size must be >= 0");
     const std::size_t nv = input.surface.vertices.size();
+    std::size_t corners = 0;  // vertices past the corners are carried ones (quadrics only for corners)
     for (const Tri& f : input.surface.triangles)
-        for (std::int32_t v : f)
+        for (std::int32_t v : f) {
             if (v < 0 || std::size_t(v) >= nv) throw Error("simplification: triangle index out of range");
+            corners = std::max(corners, std::size_t(v) + 1);
+        }
+    for (const auto& carried : input.carried)
+        for (std::int32_t v : carried)
+            if (v < std::int32_t(corners) || std::size_t(v) >= nv)
+                throw Error("simplification: a carried vertex must follow every corner");
     ProgressStage stage(progress, "simplify interfaces");
 
     // The starting state is rebuilt rather than kept for a possible rerun: a copy would hold
@@ -1107,10 +1141,19 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
         st.tris = input.surface.triangles;
         st.sides = input.sides;
         st.pts.resize(st.tris.size());
-        st.quadrics.resize(nv);
+        st.quadrics.resize(corners);
         st.err.assign(nv, 0.0f);
+        // The adaptive extraction's carried vertices start on their triangles, at their distance.
+        for (std::size_t t = 0; t < input.carried.size(); ++t) {
+            st.pts[t] = input.carried[t];
+            const Tri& f = st.tris[t];
+            for (std::int32_t p : st.pts[t])
+                st.err[std::size_t(p)] = float(std::sqrt(squaredDistanceToTriangle(P[std::size_t(p)], P[std::size_t(f[0])],
+                                                                                   P[std::size_t(f[1])], P[std::size_t(f[2])])));
+        }
         st.nearTeeth = nearTeeth;
         st.plateMm = &plateMm;
+        st.spentMm = &input.sampleErrorMm;
         for (const Tri& f : st.tris) {
             const Vec3 n2 = (P[std::size_t(f[1])] - P[std::size_t(f[0])]).cross(P[std::size_t(f[2])] - P[std::size_t(f[0])]);
             const double len = n2.norm();

@@ -31,6 +31,8 @@
 // are independent and merged in a fixed order; ties broken by vertex ids).
 #pragma once
 
+#include "filters/AdaptiveCells.h"
+#include "filters/InterfaceBounds.h"
 #include "io/InterfaceComplex.h"
 #include "io/Progress.h"
 
@@ -105,6 +107,13 @@ nlohmann::json toJson(const SimplifyStats& stats);
 
 /// The options as recorded in `jawmesh surface`'s summary.
 nlohmann::json toJson(const SimplifyOptions& options);
+
+/// The error bounds of `options`, per interface (shared with the adaptive extraction).
+InterfaceBounds boundsOf(const SimplifyOptions& options);
+
+/// `adaptive` with what the adaptive extraction must share with the simplification set from
+/// `options`: the bounds, the near-teeth distance and the smallest region wedge.
+AdaptiveOptions matchedTo(const SimplifyOptions& options, AdaptiveOptions adaptive = {});
 
 /// Interface kind of a label pair, as used in SimplifyStats and reports.
 std::string interfaceKind(Label a, Label b);

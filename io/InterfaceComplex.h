@@ -28,6 +28,17 @@ struct InterfaceComplex {
     /// into sides[t][0] and out of sides[t][1]. sides[t][0] != sides[t][1].
     std::vector<std::array<Label, 2>> sides;
     std::vector<RegionSeed> seeds;  ///< one per connected component of every region
+    /// Optional, from the adaptive extraction (filters/AdaptiveCells.h), consumed by the
+    /// simplification; empty otherwise. Per triangle: vertices of the fine interface that it stands
+    /// for, which are corners of no triangle (they follow all corners in surface.vertices; use
+    /// withoutCarried before handing the complex to anything else). Per corner vertex: how far the
+    /// sample points of the triangles around it may already be from the fine interface, mm.
+    std::vector<std::vector<std::int32_t>> carried;
+    std::vector<float> sampleErrorMm;
 };
+
+/// The complex without its carried vertices (the corners only, same order) and without the
+/// adaptive extraction's data: what a writer or TetGen may see.
+InterfaceComplex withoutCarried(InterfaceComplex complex);
 
 }  // namespace jawmesh

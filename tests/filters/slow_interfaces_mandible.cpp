@@ -123,6 +123,7 @@ TEST(SlowInterfaces, MandibleSurfaceIsIntersectionFreeClosedOfTheLabelTopologyAn
         const LabelField field = readLabelField((dir / "levelsets").string());
         ExtractOptions eo = options.extract;
         eo.findSeeds = false;
+        eo.adaptive.maxLevel = 0;  // the reference is the fine extraction, not the run's adaptive one
         raw = extractInterfaces(field, eo);
     }
     std::printf("raw extraction %zu triangles, meshed surface %zu triangles\n", raw.surface.triangles.size(),

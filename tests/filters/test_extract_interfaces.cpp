@@ -2,6 +2,8 @@
 // sides, no self-intersections, seeds inside their regions, sub-voxel accuracy, determinism.
 #include "filters/ExtractInterfaces.h"
 #include "filters/SelfIntersections.h"
+#include "filters/TriangleBvh.h"
+#include "filters/TriangleGeometry.h"
 #include "filters/WellComposedLabels.h"
 #include "io/PolyWriter.h"
 #include "support_SyntheticLabels.h"
@@ -62,10 +64,17 @@ void expectValidComplex(const InterfaceComplex& c, const LabelField& field) {
     EXPECT_EQ(seeded, regionLabels(c));
 }
 
+/// The fine extraction: one vertex per dual cell, no merged blocks.
+ExtractOptions fineExtraction() {
+    ExtractOptions e;
+    e.adaptive.maxLevel = 0;
+    return e;
+}
+
 TEST(ExtractInterfaces, JawPhantomIsClosedManifoldAccurate) {
     const double h = 0.05;
     const auto syn = test::jawPhantom(h);
-    const InterfaceComplex c = extractInterfaces(syn.field);
+    const InterfaceComplex c = extractInterfaces(syn.field, fineExtraction());
     expectValidComplex(c, syn.field);
 
     // one seed per connected component: every region of the phantom is connected
@@ -120,6 +129,54 @@ TEST(ExtractInterfaces, JawPhantomIsClosedManifoldAccurate) {
     const Vec3& wp = c.surface.vertices[worstV];
     EXPECT_LT(worst, 0.5 * h) << "worst vertex " << wp.transpose() << " on " << labelName(wa) << "|"
                               << labelName(wb) << ": " << syn.sdf(wa, wp) << ", " << syn.sdf(wb, wp);
+}
+
+TEST(ExtractInterfaces, AdaptiveIsTheFineSurfaceWithinItsBoundsWithFewerTriangles) {
+    const auto syn = test::jawPhantom(0.05);
+    ExtractOptions options;
+    options.adaptive.boneNearTeethMm = 0.2;  // the phantom's bone is all near its teeth otherwise
+    ExtractStats stats;
+    const InterfaceComplex adaptive = extractInterfaces(syn.field, options, noProgress(), &stats);
+    const InterfaceComplex fine = extractInterfaces(syn.field, fineExtraction());
+    const InterfaceComplex corners = withoutCarried(adaptive);
+    std::printf("phantom: %zu fine triangles, %zu adaptive (%zu blocks of %zu cells; carried %.4f, samples %.4f mm)\n",
+                fine.surface.triangles.size(), adaptive.surface.triangles.size(), stats.adaptive.blocks,
+                stats.adaptive.cellsMerged, stats.adaptive.maxCarriedErrorMm, stats.adaptive.maxSampleErrorMm);
+    EXPECT_LT(adaptive.surface.triangles.size(), fine.surface.triangles.size() * 3 / 4);
+    // the same regions, closed, manifold, of the same topology, intersection-free
+    EXPECT_EQ(regionLabels(adaptive), regionLabels(fine));
+    for (Label L : regionLabels(fine)) {
+        EXPECT_EQ(test::checkRegionBoundary(corners, L), "") << labelName(L);
+        EXPECT_EQ(test::eulerAndComponents(regionBoundary(corners, L)), test::eulerAndComponents(regionBoundary(fine, L)))
+            << labelName(L);
+    }
+    EXPECT_TRUE(findSelfIntersections(corners.surface).clean());
+    // every fine vertex is a corner or carried, within its share of the bound of its triangle;
+    // every fine vertex position is kept (corners and carried vertices are fine vertices)
+    ASSERT_EQ(adaptive.surface.vertices.size(), fine.surface.vertices.size());
+    std::size_t carried = 0;
+    for (std::size_t t = 0; t < adaptive.carried.size(); ++t) {
+        const Tri& f = adaptive.surface.triangles[t];
+        const auto& V = adaptive.surface.vertices;
+        const double bound = options.adaptive.carriedFraction *
+                             options.adaptive.bounds.boundMm(adaptive.sides[t][0], adaptive.sides[t][1], false);
+        for (std::int32_t p : adaptive.carried[t]) {
+            ++carried;
+            EXPECT_LE(std::sqrt(squaredDistanceToTriangle(V[std::size_t(p)], V[f[0]], V[f[1]], V[f[2]])), bound + 1e-9);
+        }
+    }
+    EXPECT_EQ(carried + corners.surface.vertices.size(), fine.surface.vertices.size());
+    EXPECT_GT(stats.adaptive.blocks, 0u);
+    // the other way: sample points of the adaptive triangles near the fine surface of their pair
+    const TriangleBvh fineBvh = buildTriangleBvh(fine.surface);
+    for (std::size_t t = 0; t < corners.sides.size(); ++t) {
+        const Tri& f = corners.surface.triangles[t];
+        const Vec3 a = corners.surface.vertices[f[0]], b = corners.surface.vertices[f[1]], c = corners.surface.vertices[f[2]];
+        const double bound = options.adaptive.sampleFraction *
+                             options.adaptive.bounds.boundMm(corners.sides[t][0], corners.sides[t][1], false);
+        for (const Vec3& x : {Vec3((a + b + c) / 3), Vec3((a + b) / 2), Vec3((b + c) / 2), Vec3((c + a) / 2)})
+            EXPECT_LE(std::sqrt(closestTriangle(fineBvh, x).squaredDistanceMm2), bound + 1e-9);
+    }
 }
 
 TEST(ExtractInterfaces, SameOutputWithOneAndTwoThreads) {

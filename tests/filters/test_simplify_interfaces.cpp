@@ -36,10 +36,17 @@ SimplifyOptions phantomOptions() {
     return o;
 }
 
+/// The fine extraction (no merged blocks): the reference every bound is measured against.
+ExtractOptions fineExtraction() {
+    ExtractOptions e;
+    e.adaptive.maxLevel = 0;
+    return e;
+}
+
 const Simplified& phantom() {
     static const Simplified s = [] {
         Simplified r;
-        r.fine = extractInterfaces(test::jawPhantom(0.05).field);
+        r.fine = extractInterfaces(test::jawPhantom(0.05).field, fineExtraction());
         r.coarse = simplifyInterfaces(r.fine, phantomOptions(), noProgress(), &r.stats);
         return r;
     }();
@@ -94,9 +101,8 @@ TEST(SimplifyInterfaces, TopologyOfEveryRegionIsKept) {
         }
 }
 
-TEST(SimplifyInterfaces, HausdorffToTheFineInterfaceWithinTheBound) {
-    const auto& s = phantom();
-    const SimplifyOptions o = phantomOptions();
+/// Both directions of the bound of simplified `s.coarse` against the fine extraction `s.fine`.
+void expectWithinBounds(const Simplified& s, const SimplifyOptions& o) {
     EXPECT_LE(s.stats.maxErrorMm, std::max({o.toothErrorMm, o.pdlErrorMm, o.boneErrorMm, o.boneFarErrorMm}) + 1e-9);
     EXPECT_LE(s.stats.maxErrorNearTeethMm, std::max({o.toothErrorMm, o.pdlErrorMm, o.boneErrorMm}) + 1e-9);
     const std::vector<char> near = verticesNearTeeth(s.fine, o.boneNearTeethMm);
@@ -159,6 +165,33 @@ TEST(SimplifyInterfaces, HausdorffToTheFineInterfaceWithinTheBound) {
         }
     }
     EXPECT_LE(worstExcess, 1e-9) << "a coarse triangle strays from the fine surface by more than its bound";
+}
+
+TEST(SimplifyInterfaces, HausdorffToTheFineInterfaceWithinTheBound) { expectWithinBounds(phantom(), phantomOptions()); }
+
+TEST(SimplifyInterfaces, AdaptiveExtractionThenSimplificationKeepsTheBoundsAgainstTheFineSurface) {
+    // The pipeline's path: merged blocks (their fine vertices carried), then the simplification,
+    // measured against the fine extraction as the reference.
+    const SimplifyOptions o = phantomOptions();
+    const LabelField field = test::jawPhantom(0.05).field;
+    ExtractOptions adaptive;
+    adaptive.adaptive = matchedTo(o);
+    ExtractStats extractStats;
+    const InterfaceComplex merged = extractInterfaces(field, adaptive, noProgress(), &extractStats);
+    ASSERT_GT(extractStats.adaptive.blocks, 0u) << "the phantom has blocks to merge";
+    Simplified s;
+    s.fine = extractInterfaces(field, fineExtraction());
+    s.coarse = simplifyInterfaces(merged, o, noProgress(), &s.stats);
+    std::printf("phantom: fine %zu, merged %zu (%zu blocks), simplified %zu triangles\n",
+                s.fine.surface.triangles.size(), merged.surface.triangles.size(), extractStats.adaptive.blocks,
+                s.coarse.surface.triangles.size());
+    expectWithinBounds(s, o);
+    for (Label L : regionLabels(s.fine)) {
+        EXPECT_EQ(test::checkRegionBoundary(s.coarse, L), "") << labelName(L);
+        EXPECT_EQ(test::eulerAndComponents(regionBoundary(s.coarse, L)), test::eulerAndComponents(regionBoundary(s.fine, L)))
+            << labelName(L) << " (Euler characteristic, components)";
+    }
+    EXPECT_TRUE(findSelfIntersections(s.coarse.surface).clean());
 }
 
 TEST(SimplifyInterfaces, CapKeepsThreeTrianglesAcrossThePdl) {

@@ -1,0 +1,480 @@
+#include "filters/AdaptiveCells.h"
+
+#include "filters/CoarseBlocks.h"
+#include "filters/RegionWedges.h"
+#include "filters/SelfIntersections.h"
+#include "filters/TriangleGeometry.h"
+#include "io/VertexTriangles.h"
+
+#include <openvdb/tools/Morphology.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+namespace jawmesh {
+namespace {
+
+using openvdb::Coord;
+
+/// A merged block: dual cells lo .. lo + 2^level - 1 per axis, its member cells and vertex cell.
+struct Block {
+    Coord lo;
+    int level = 0;
+    std::vector<std::int32_t> members;
+    std::int32_t vertex = -1;
+    std::array<Label, 2> sides{};
+    std::vector<std::int32_t> carrier;  ///< per member: the triangle nearest it (certify)
+    float carriedErrorMm = 0;
+    float sampleErrorMm = 0;
+};
+
+int floorShift(int x, int level) { return x >= 0 ? x >> level : -((-x + (1 << level) - 1) >> level); }
+Coord scaled(const Coord& c, int s) { return Coord(c.x() * s, c.y() * s, c.z() * s); }
+Coord blockOf(const Coord& c, int level) { return Coord(floorShift(c.x(), level), floorShift(c.y(), level), floorShift(c.z(), level)); }
+
+/// The block's label pair when it is one disc and the cube ringVoxels larger around it is one disc
+/// of the same pair (no other sheet, no third label nearby).
+std::optional<std::array<Label, 2>> blockPair(const openvdb::Int32Grid::ConstAccessor& labels, const Coord& lo, int level,
+                                              int ringVoxels) {
+    const int size = 1 << level;
+    const Coord voxelLo(lo.x() * size, lo.y() * size, lo.z() * size);
+    const auto any = [](Label, Label) { return true; };
+    const auto pair = blockIsOneDisc(labels, voxelLo, size, any);
+    if (!pair || ringVoxels <= 0) return pair;
+    const auto ring = blockIsOneDisc(labels, voxelLo.offsetBy(-ringVoxels), size + 2 * ringVoxels, any);
+    return ring && *ring == *pair ? pair : std::nullopt;
+}
+
+/// Top-level blocks within `clearanceMm` of a dual cell at a tooth or PDL quad (26-neighbour
+/// dilation of those blocks on a grid of blocks).
+openvdb::BoolGrid::Ptr blocksNearTeeth(const std::vector<DualQuad>& quads, const std::vector<Coord>& cells,
+                                       int level, double blockMm, double clearanceMm) {
+    auto near = openvdb::BoolGrid::create(false);
+    auto acc = near->getAccessor();
+    for (const DualQuad& q : quads) {
+        const auto toothOrPdl = [](Label l) {
+            return l != kOutsideLabel && (labelKind(l) == LabelKind::Tooth || labelKind(l) == LabelKind::Pdl);
+        };
+        if (!toothOrPdl(q.sides[0]) && !toothOrPdl(q.sides[1])) continue;
+        for (std::int32_t c : q.cells) acc.setValueOn(blockOf(cells[std::size_t(c)], level), true);
+    }
+    const int steps = int(std::ceil(clearanceMm / blockMm)) + 1;
+    if (steps > 0) openvdb::tools::dilateActiveValues(near->tree(), steps, openvdb::tools::NN_FACE_EDGE_VERTEX);
+    return near;
+}
+
+void chooseBlocks(const openvdb::Int32Grid::ConstAccessor& labels, const std::vector<Coord>& cells, const Coord& lo,
+                  int level, int ringVoxels, std::vector<std::int32_t> members, std::vector<Block>& out);
+
+/// Block lo at `level` tried as its eight children (chooseBlocks on each).
+void chooseInChildren(const openvdb::Int32Grid::ConstAccessor& labels, const std::vector<Coord>& cells, const Coord& lo,
+                      int level, int ringVoxels, const std::vector<std::int32_t>& members, std::vector<Block>& out) {
+    std::vector<std::int32_t> child[8];
+    const int half = 1 << (level - 1);
+    for (std::int32_t m : members) {
+        const Coord c = cells[std::size_t(m)] - scaled(lo, 1 << level);
+        child[(c.x() >= half) | ((c.y() >= half) << 1) | ((c.z() >= half) << 2)].push_back(m);
+    }
+    for (int k = 0; k < 8; ++k)
+        chooseBlocks(labels, cells, Coord(2 * lo.x() + (k & 1), 2 * lo.y() + ((k >> 1) & 1), 2 * lo.z() + ((k >> 2) & 1)),
+                     level - 1, ringVoxels, std::move(child[k]), out);
+}
+
+/// The blocks among `members` (cells of block lo at `level`) that pass the disc test, largest
+/// first: a block that fails is tried as its eight children.
+void chooseBlocks(const openvdb::Int32Grid::ConstAccessor& labels, const std::vector<Coord>& cells, const Coord& lo,
+                  int level, int ringVoxels, std::vector<std::int32_t> members, std::vector<Block>& out) {
+    if (level <= 0 || members.empty()) return;
+    if (const auto pair = blockPair(labels, lo, level, ringVoxels)) {
+        Block b;
+        b.lo = lo;
+        b.level = level;
+        b.members = std::move(members);
+        b.sides = *pair;
+        out.push_back(std::move(b));
+        return;
+    }
+    chooseInChildren(labels, cells, lo, level, ringVoxels, members, out);
+}
+
+/// The member whose vertex is nearest the mean of the members' vertices (lowest index on ties).
+std::int32_t blockVertex(const Block& b, const std::vector<Vec3>& P) {
+    Vec3 mean = Vec3::Zero();
+    for (std::int32_t m : b.members) mean += P[std::size_t(m)];
+    mean /= double(b.members.size());
+    std::int32_t best = b.members.front();
+    for (std::int32_t m : b.members)
+        if ((P[std::size_t(m)] - mean).squaredNorm() < (P[std::size_t(best)] - mean).squaredNorm()) best = m;
+    return best;
+}
+
+/// The surface as the blocks make it, built locally: each cell's quads, and per cell its block and
+/// the vertex that stands for it. Split blocks stay in `blocks` with no members (ids are stable).
+struct Mesh {
+    const std::vector<DualQuad>& quads;
+    const std::vector<Vec3>& P;
+    VertexTriangles quadsOfCell;  ///< per dual cell, the quads it is a corner of
+    std::vector<Block> blocks;
+    std::vector<std::int32_t> vertexOf, blockOfCell, blockAtVertex;
+
+    /// The cells that vertex v stands for: its block's members, or itself.
+    const std::int32_t* clusterBegin(std::int32_t v) const {
+        const std::int32_t b = blockAtVertex[std::size_t(v)];
+        return b >= 0 ? blocks[std::size_t(b)].members.data() : &vertexOf[std::size_t(v)];
+    }
+    const std::int32_t* clusterEnd(std::int32_t v) const {
+        const std::int32_t b = blockAtVertex[std::size_t(v)];
+        return b >= 0 ? blocks[std::size_t(b)].members.data() + blocks[std::size_t(b)].members.size()
+                      : &vertexOf[std::size_t(v)] + 1;
+    }
+
+    /// The triangles (with their quads' label pairs) that have both x and y as corners (y = x: all
+    /// triangles at x), from the quads of the smaller of the two clusters.
+    void trianglesAt(std::int32_t x, std::int32_t y, std::vector<std::int32_t>& quadIds, std::vector<Tri>& tris,
+                     std::vector<std::array<Label, 2>>& sides) const {
+        const bool fromY = y != x && clusterEnd(y) - clusterBegin(y) < clusterEnd(x) - clusterBegin(x);
+        const std::int32_t from = fromY ? y : x;
+        quadIds.clear();
+        for (const std::int32_t* c = clusterBegin(from); c != clusterEnd(from); ++c)
+            quadIds.insert(quadIds.end(), quadsOfCell.begin(*c), quadsOfCell.end(*c));
+        std::sort(quadIds.begin(), quadIds.end());
+        quadIds.erase(std::unique(quadIds.begin(), quadIds.end()), quadIds.end());
+        tris.clear();
+        sides.clear();
+        for (std::int32_t q : quadIds) {
+            std::array<std::int32_t, 4> v;
+            for (int k = 0; k < 4; ++k) v[std::size_t(k)] = vertexOf[std::size_t(quads[std::size_t(q)].cells[std::size_t(k)])];
+            Tri t[2];
+            const int n = quadTriangles(v, P, t);
+            for (int i = 0; i < n; ++i) {
+                const bool hasX = t[i][0] == x || t[i][1] == x || t[i][2] == x;
+                const bool hasY = t[i][0] == y || t[i][1] == y || t[i][2] == y;
+                if (hasX && hasY) {
+                    tris.push_back(t[i]);
+                    sides.push_back(quads[std::size_t(q)].sides);
+                }
+            }
+        }
+    }
+
+    /// Squared distance from x to the fine triangles of the quads around dual cell c.
+    double squaredDistanceToFineAround(std::int32_t c, const Vec3& x) const {
+        double best = std::numeric_limits<double>::infinity();
+        for (const std::int32_t* q = quadsOfCell.begin(c); q != quadsOfCell.end(c); ++q) {
+            Tri t[2];
+            const int n = quadTriangles(quads[std::size_t(*q)].cells, P, t);
+            for (int i = 0; i < n; ++i)
+                best = std::min(best, squaredDistanceToTriangle(x, P[std::size_t(t[i][0])], P[std::size_t(t[i][1])],
+                                                                P[std::size_t(t[i][2])]));
+        }
+        return best;
+    }
+
+    /// Makes block b the one its members belong to (a new block or a live one).
+    void assign(std::size_t b) {
+        Block& k = blocks[b];
+        if (k.vertex < 0) k.vertex = blockVertex(k, P);
+        for (std::int32_t c : k.members) {
+            blockOfCell[std::size_t(c)] = std::int32_t(b);
+            vertexOf[std::size_t(c)] = k.vertex;
+        }
+        blockAtVertex[std::size_t(k.vertex)] = std::int32_t(b);
+    }
+    /// Block b is gone: its cells are fine again (until a child takes them).
+    void release(std::size_t b) {
+        Block& k = blocks[b];
+        for (std::int32_t c : k.members) {
+            blockOfCell[std::size_t(c)] = -1;
+            vertexOf[std::size_t(c)] = c;
+        }
+        blockAtVertex[std::size_t(k.vertex)] = -1;
+    }
+};
+
+/// Per-thread scratch of the certificate.
+struct Scratch {
+    std::vector<std::int32_t> quadIds;
+    std::vector<Tri> fan, edgeTris;
+    std::vector<std::array<Label, 2>> fanSides, edgeSides;
+    std::vector<EdgeFanTriangle> wedge;
+};
+
+/// No triangle at the block's vertex has an angle under the minimum, and no region spans a wedge
+/// under the minimum at their edges: the simplification could not always remove such shapes, and
+/// TetGen under -Y must keep them (slivers).
+bool fanShapeOk(const Mesh& mesh, Scratch& s, double cosMinAngle, double minWedgeDeg) {
+    const auto& P = mesh.P;
+    for (const Tri& f : s.fan) {
+        if (smallestAngleCosine(P[std::size_t(f[0])], P[std::size_t(f[1])], P[std::size_t(f[2])]) > cosMinAngle) return false;
+        for (int k = 0; k < 3; ++k) {
+            const std::int32_t a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
+            mesh.trianglesAt(a, b, s.quadIds, s.edgeTris, s.edgeSides);
+            s.wedge.clear();
+            for (std::size_t i = 0; i < s.edgeTris.size(); ++i) {
+                const Tri& g = s.edgeTris[i];
+                int ia = 0;
+                while (g[std::size_t(ia)] != a) ++ia;
+                const bool aThenB = g[std::size_t((ia + 1) % 3)] == b;
+                const std::int32_t apex = g[std::size_t(aThenB ? (ia + 2) % 3 : (ia + 1) % 3)];
+                s.wedge.push_back({P[std::size_t(apex)], s.edgeSides[i][0], s.edgeSides[i][1], aThenB});
+            }
+            if (smallestRegionWedgeDeg(P[std::size_t(a)], P[std::size_t(b)], s.wedge.data(), s.wedge.size()) < minWedgeDeg)
+                return false;
+        }
+    }
+    return true;
+}
+
+/// The block's fine vertices from its triangles (each carried by the nearest) and the triangles'
+/// sample points from the fine surface: fills carriers and both errors; false when one exceeds
+/// its bound (mm). Stops early then.
+bool errorsWithin(Block& b, const Mesh& mesh, const Scratch& s, double carriedMm, double sampleMm) {
+    const auto& P = mesh.P;
+    const auto corner = [&](const Tri& t, int k) -> const Vec3& { return P[std::size_t(t[std::size_t(k)])]; };
+    double worst2 = 0;
+    b.carrier.assign(b.members.size(), -1);
+    for (std::size_t i = 0; i < b.members.size(); ++i) {
+        const Vec3& x = P[std::size_t(b.members[i])];
+        double d2 = std::numeric_limits<double>::infinity();
+        for (std::size_t t = 0; t < s.fan.size(); ++t) {
+            const double e = squaredDistanceToTriangle(x, corner(s.fan[t], 0), corner(s.fan[t], 1), corner(s.fan[t], 2));
+            if (e < d2) {
+                d2 = e;
+                b.carrier[i] = std::int32_t(t);  // index into the fan; made a triangle id at the end
+            }
+        }
+        worst2 = std::max(worst2, d2);
+        if (worst2 > carriedMm * carriedMm) return false;
+    }
+    b.carriedErrorMm = float(std::sqrt(worst2));
+    worst2 = 0;
+    for (const Tri& t : s.fan) {
+        const Vec3 a = corner(t, 0), c1 = corner(t, 1), c2 = corner(t, 2);
+        const Vec3 samples[4] = {(a + c1 + c2) / 3.0, 0.5 * (a + c1), 0.5 * (c1 + c2), 0.5 * (c2 + a)};
+        for (const Vec3& x : samples) {
+            double d2 = std::numeric_limits<double>::infinity();
+            std::int32_t nearest = -1;
+            for (std::int32_t v : t)
+                for (const std::int32_t* c = mesh.clusterBegin(v); c != mesh.clusterEnd(v); ++c) {
+                    const double e = (P[std::size_t(*c)] - x).squaredNorm();
+                    if (e < d2) {
+                        d2 = e;
+                        nearest = *c;
+                    }
+                }
+            if (d2 > worst2) d2 = std::min(d2, mesh.squaredDistanceToFineAround(nearest, x));
+            worst2 = std::max(worst2, d2);
+            if (worst2 > sampleMm * sampleMm) return false;
+        }
+    }
+    b.sampleErrorMm = float(std::sqrt(worst2));
+    return true;
+}
+
+/// The live blocks that share a quad with a cell of block b (their triangles change with b's).
+void neighbourBlocks(const Mesh& mesh, const Block& b, std::vector<char>& mark) {
+    for (std::int32_t c : b.members)
+        for (const std::int32_t* q = mesh.quadsOfCell.begin(c); q != mesh.quadsOfCell.end(c); ++q)
+            for (std::int32_t d : mesh.quads[std::size_t(*q)].cells) {
+                const std::int32_t o = mesh.blockOfCell[std::size_t(d)];
+                if (o >= 0) mark[std::size_t(o)] = 1;
+            }
+}
+
+/// Blocks at a self-intersecting or degenerate triangle of `triangles` (exact check).
+std::vector<std::int32_t> blocksAtIntersections(const std::vector<Tri>& triangles, const Mesh& mesh) {
+    SurfaceMesh surface;
+    std::vector<std::int32_t> id(mesh.P.size(), -1);
+    surface.triangles = triangles;
+    for (Tri& t : surface.triangles)
+        for (std::int32_t& c : t) {
+            if (id[std::size_t(c)] < 0) {
+                id[std::size_t(c)] = std::int32_t(surface.vertices.size());
+                surface.vertices.push_back(mesh.P[std::size_t(c)]);
+            }
+            c = id[std::size_t(c)];
+        }
+    const SelfIntersectionReport report = findSelfIntersections(surface);
+    std::vector<std::int32_t> hit;
+    const auto mark = [&](std::int32_t t) {
+        for (std::int32_t c : triangles[std::size_t(t)])
+            if (mesh.blockAtVertex[std::size_t(c)] >= 0) hit.push_back(mesh.blockAtVertex[std::size_t(c)]);
+    };
+    for (const auto& [a, b] : report.pairs) {
+        mark(a);
+        mark(b);
+    }
+    for (std::int32_t t : report.degenerate) mark(t);
+    std::sort(hit.begin(), hit.end());
+    hit.erase(std::unique(hit.begin(), hit.end()), hit.end());
+    return hit;
+}
+
+/// The quads around every dual cell, in compressed rows.
+VertexTriangles quadsOfCells(const std::vector<DualQuad>& quads, std::size_t cellCount) {
+    VertexTriangles rows;
+    rows.start.assign(cellCount + 1, 0);
+    for (const DualQuad& q : quads)
+        for (std::int32_t c : q.cells) ++rows.start[std::size_t(c) + 1];
+    for (std::size_t c = 0; c < cellCount; ++c) rows.start[c + 1] += rows.start[c];
+    rows.list.resize(rows.start[cellCount]);
+    std::vector<std::uint32_t> at(rows.start.begin(), rows.start.end() - 1);
+    for (std::size_t q = 0; q < quads.size(); ++q)
+        for (std::int32_t c : quads[q].cells) rows.list[at[std::size_t(c)]++] = std::int32_t(q);
+    return rows;
+}
+
+/// Every cell in its top-level block, each block tried largest first (parallel, in block order).
+std::vector<Block> initialBlocks(const openvdb::Int32Grid& labels, const std::vector<Coord>& cells, int top,
+                                 int ringVoxels) {
+    std::vector<std::pair<Coord, std::int32_t>> byBlock(cells.size());
+    for (std::size_t c = 0; c < cells.size(); ++c) byBlock[c] = {blockOf(cells[c], top), std::int32_t(c)};
+    std::stable_sort(byBlock.begin(), byBlock.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::size_t> groupStart;
+    for (std::size_t i = 0; i < byBlock.size(); ++i)
+        if (i == 0 || byBlock[i].first != byBlock[i - 1].first) groupStart.push_back(i);
+    groupStart.push_back(byBlock.size());
+    std::vector<std::vector<Block>> chosen(groupStart.size() - 1);
+    tbb::parallel_for(std::size_t(0), chosen.size(), [&](std::size_t g) {
+        auto acc = labels.getConstAccessor();
+        std::vector<std::int32_t> members;
+        for (std::size_t i = groupStart[g]; i < groupStart[g + 1]; ++i) members.push_back(byBlock[i].second);
+        chooseBlocks(acc, cells, byBlock[groupStart[g]].first, top, ringVoxels, std::move(members), chosen[g]);
+    });
+    std::vector<Block> blocks;
+    for (auto& v : chosen)
+        for (Block& b : v) blocks.push_back(std::move(b));
+    return blocks;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const AdaptiveStats& s) {
+    return {{"fine_cells", s.fineCells},
+            {"blocks", s.blocks},
+            {"cells_merged", s.cellsMerged},
+            {"split_for_error", s.splitForError},
+            {"split_for_intersection", s.splitForIntersection},
+            {"rounds", s.rounds},
+            {"max_carried_error_mm", s.maxCarriedErrorMm},
+            {"max_sample_error_mm", s.maxSampleErrorMm},
+            {"seconds", s.seconds}};
+}
+
+AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vector<Coord>& cells, const std::vector<DualQuad>& quads,
+                                const std::vector<Vec3>& P, const AdaptiveOptions& options, Progress& progress,
+                                AdaptiveStats* stats) {
+    const auto start = std::chrono::steady_clock::now();
+    AdaptiveStats local;
+    AdaptiveStats& st = stats ? *stats : local;
+    st = AdaptiveStats{};
+    st.fineCells = cells.size();
+    const int top = std::clamp(options.maxLevel, 0, 6);
+    Mesh mesh{quads, P, {}, {}, {}, {}, {}};
+    mesh.vertexOf.resize(cells.size());
+    for (std::size_t c = 0; c < cells.size(); ++c) mesh.vertexOf[c] = std::int32_t(c);
+    mesh.blockOfCell.assign(cells.size(), -1);
+    mesh.blockAtVertex.assign(cells.size(), -1);
+    AdaptiveSurface out;
+    if (top > 0) {
+        mesh.quadsOfCell = quadsOfCells(quads, cells.size());
+        mesh.blocks = initialBlocks(labels, cells, top, options.ringVoxels);
+        for (std::size_t b = 0; b < mesh.blocks.size(); ++b) mesh.assign(b);
+    }
+    progress.checkCancelled();
+
+    const double voxelMm = labels.voxelSize()[0];
+    const auto near = top > 0 ? blocksNearTeeth(quads, cells, top, voxelMm * double(1 << top), options.boneNearTeethMm)
+                              : openvdb::BoolGrid::create(false);
+    const auto nearAcc = near->getConstAccessor();
+    const double cosMinAngle = std::cos(options.minAngleDeg * 3.14159265358979323846 / 180.0);
+    std::vector<char> dirty(mesh.blocks.size(), 1);
+    // Certify what changed until every block passes; then the exact intersection check of the
+    // whole surface, whose blocks go back to fine cells; until it is clean.
+    for (int round = 0;; ++round) {
+        std::vector<std::size_t> todo;
+        for (std::size_t b = 0; b < mesh.blocks.size(); ++b)
+            if (dirty[b] && !mesh.blocks[b].members.empty()) todo.push_back(b);
+        std::vector<char> failed(todo.size(), 0);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const auto& r) {
+            Scratch s;
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                Block& k = mesh.blocks[todo[i]];
+                mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
+                const bool nearTeeth = nearAcc.isValueOn(blockOf(k.lo, top - k.level));
+                const double bound = options.bounds.boundMm(k.sides[0], k.sides[1], nearTeeth);
+                failed[i] = !fanShapeOk(mesh, s, cosMinAngle, options.minWedgeDeg) ||
+                            !errorsWithin(k, mesh, s, options.carriedFraction * bound, options.sampleFraction * bound);
+            }
+        });
+        std::fill(dirty.begin(), dirty.end(), 0);
+        std::vector<std::size_t> split;
+        for (std::size_t i = 0; i < todo.size(); ++i)
+            if (failed[i]) split.push_back(todo[i]);
+        st.splitForError += split.size();
+        bool toFine = false;
+        if (split.empty()) {
+            emitQuadTriangles(quads, mesh.vertexOf, P, out.triangles, out.sides);
+            if (mesh.blocks.empty()) break;
+            const std::vector<std::int32_t> hit = blocksAtIntersections(out.triangles, mesh);
+            if (hit.empty()) break;
+            split.assign(hit.begin(), hit.end());
+            st.splitForIntersection += split.size();
+            toFine = true;  // no second try for a block at an intersection
+        }
+        ++st.rounds;
+        // Split (or drop) them; their children and the blocks around them are checked again.
+        auto acc = labels.getConstAccessor();
+        for (std::size_t b : split) {
+            neighbourBlocks(mesh, mesh.blocks[b], dirty);
+            mesh.release(b);
+            std::vector<Block> children;
+            if (!toFine && round < 64)
+                chooseInChildren(acc, cells, mesh.blocks[b].lo, mesh.blocks[b].level, options.ringVoxels,
+                                 mesh.blocks[b].members, children);
+            mesh.blocks[b].members.clear();
+            for (Block& c : children) {
+                mesh.blocks.push_back(std::move(c));
+                mesh.assign(mesh.blocks.size() - 1);
+            }
+            dirty.resize(mesh.blocks.size(), 1);  // new children are checked
+        }
+        for (std::size_t b : split) dirty[b] = 0;
+        progress.checkCancelled();
+    }
+    // Carried cells (by the triangle of the emitted list that carries them) and sample errors.
+    out.sampleErrorMm.assign(cells.size(), 0.0f);
+    bool anyBlock = false;
+    for (const Block& k : mesh.blocks) anyBlock = anyBlock || !k.members.empty();
+    if (anyBlock) {
+        const VertexTriangles around = vertexTriangles(out.triangles, cells.size());
+        out.carried.assign(out.triangles.size(), {});
+        Scratch s;
+        for (Block& k : mesh.blocks) {
+            if (k.members.empty()) continue;
+            // the fan as certified, in trianglesAt's order: map its indices to the emitted triangles
+            mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
+            std::vector<std::int32_t> emitted(s.fan.size(), -1);
+            for (std::size_t i = 0; i < s.fan.size(); ++i)
+                for (const std::int32_t* t = around.begin(k.vertex); t != around.end(k.vertex); ++t) {
+                    const Tri& e = out.triangles[std::size_t(*t)];
+                    if (e == s.fan[i]) emitted[i] = *t;
+                }
+            for (std::size_t i = 0; i < k.members.size(); ++i)
+                if (k.members[i] != k.vertex) out.carried[std::size_t(emitted[std::size_t(k.carrier[i])])].push_back(k.members[i]);
+            for (const Tri& t : s.fan)
+                for (std::int32_t c : t) out.sampleErrorMm[std::size_t(c)] = std::max(out.sampleErrorMm[std::size_t(c)], k.sampleErrorMm);
+            ++st.blocks;
+            st.cellsMerged += k.members.size();
+            st.maxCarriedErrorMm = std::max(st.maxCarriedErrorMm, double(k.carriedErrorMm));
+            st.maxSampleErrorMm = std::max(st.maxSampleErrorMm, double(k.sampleErrorMm));
+        }
+    }
+    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,196 @@
+#include "filters/CoarseBlocks.h"
+
+#include <vector>
+
+namespace jawmesh {
+namespace {
+
+using openvdb::Coord;
+
+/// One label's voxels of the closed cube, n = size + 1 per side.
+struct CubeMask {
+    int n = 0;
+    std::vector<char> in;  ///< 1 where the voxel has the first label
+    char at(int x, int y, int z) const { return in[std::size_t((z * n + y) * n + x)]; }
+};
+
+/// Label changes along the line of n voxels from `from` in direction `step` (unit axis vectors).
+int changesAlong(const CubeMask& m, std::array<int, 3> from, const std::array<int, 3>& step) {
+    int changes = 0;
+    char previous = m.at(from[0], from[1], from[2]);
+    for (int i = 1; i < m.n; ++i) {
+        for (int k = 0; k < 3; ++k) from[std::size_t(k)] += step[std::size_t(k)];
+        const char here = m.at(from[0], from[1], from[2]);
+        changes += here != previous;
+        previous = here;
+    }
+    return changes;
+}
+
+bool edgesCrossedAtMostOnce(const CubeMask& m) {
+    const int e = m.n - 1;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int a : {0, e})
+            for (int b : {0, e}) {
+                std::array<int, 3> from{}, step{};
+                from[std::size_t((axis + 1) % 3)] = a;
+                from[std::size_t((axis + 2) % 3)] = b;
+                step[std::size_t(axis)] = 1;
+                if (changesAlong(m, from, step) > 1) return false;
+            }
+    return true;
+}
+
+/// Number of 4-connected components of the voxels of value `value` in an n x n face grid.
+int faceComponents(const std::vector<char>& face, int n, char value) {
+    std::vector<char> seen(face.size(), 0);
+    std::vector<int> stack;
+    int components = 0;
+    for (int start = 0; start < n * n; ++start) {
+        if (face[std::size_t(start)] != value || seen[std::size_t(start)]) continue;
+        ++components;
+        seen[std::size_t(start)] = 1;
+        stack.assign(1, start);
+        while (!stack.empty()) {
+            const int i = stack.back();
+            stack.pop_back();
+            const int u = i % n, v = i / n;
+            const int nb[4][2] = {{u - 1, v}, {u + 1, v}, {u, v - 1}, {u, v + 1}};
+            for (const auto& q : nb) {
+                if (q[0] < 0 || q[1] < 0 || q[0] >= n || q[1] >= n) continue;
+                const int j = q[1] * n + q[0];
+                if (face[std::size_t(j)] == value && !seen[std::size_t(j)]) {
+                    seen[std::size_t(j)] = 1;
+                    stack.push_back(j);
+                }
+            }
+        }
+    }
+    return components;
+}
+
+/// Each face: at most two changes around its border, each label one 4-connected piece.
+bool facesCrossedInOneArc(const CubeMask& m) {
+    const int n = m.n, e = n - 1;
+    std::vector<char> face(std::size_t(n * n));
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side : {0, e}) {
+            for (int v = 0; v < n; ++v)
+                for (int u = 0; u < n; ++u) {
+                    std::array<int, 3> p{};
+                    p[std::size_t(axis)] = side;
+                    p[std::size_t((axis + 1) % 3)] = u;
+                    p[std::size_t((axis + 2) % 3)] = v;
+                    face[std::size_t(v * n + u)] = m.at(p[0], p[1], p[2]);
+                }
+            // the border, walked once around
+            std::vector<char> ring;
+            for (int u = 0; u < e; ++u) ring.push_back(face[std::size_t(u)]);
+            for (int v = 0; v < e; ++v) ring.push_back(face[std::size_t(v * n + e)]);
+            for (int u = e; u > 0; --u) ring.push_back(face[std::size_t(e * n + u)]);
+            for (int v = e; v > 0; --v) ring.push_back(face[std::size_t(v * n)]);
+            int changes = 0;
+            for (std::size_t i = 0; i < ring.size(); ++i) changes += ring[i] != ring[(i + 1) % ring.size()];
+            if (changes > 2) return false;
+            if (faceComponents(face, n, 0) > 1 || faceComponents(face, n, 1) > 1) return false;
+        }
+    return true;
+}
+
+/// Both labels among the 8 corners, each label's corners connected along the cube's edges.
+bool cornersFormOneLoop(const CubeMask& m) {
+    const int e = m.n - 1;
+    char corner[8];
+    for (int k = 0; k < 8; ++k) corner[k] = m.at(k & 1 ? e : 0, k & 2 ? e : 0, k & 4 ? e : 0);
+    for (char value : {char(0), char(1)}) {
+        int first = -1, members = 0;
+        for (int k = 0; k < 8; ++k)
+            if (corner[k] == value) {
+                ++members;
+                if (first < 0) first = k;
+            }
+        if (members == 0) return false;
+        int reached = 1 << first, previous = 0;
+        while (reached != previous) {
+            previous = reached;
+            for (int k = 0; k < 8; ++k)
+                if (reached & (1 << k))
+                    for (int bit : {1, 2, 4})
+                        if (corner[k ^ bit] == value) reached |= 1 << (k ^ bit);
+        }
+        int count = 0;
+        for (int k = 0; k < 8; ++k) count += (reached >> k) & 1;
+        if (count != members) return false;
+    }
+    return true;
+}
+
+/// One 6-connected component with Euler characteristic 1 (vertices - edges + squares - cubes of the
+/// voxel complex): a ball.
+bool isBall(const CubeMask& m, char value) {
+    const int n = m.n;
+    const auto in = [&](int x, int y, int z) { return x < n && y < n && z < n && m.at(x, y, z) == value; };
+    long chi = 0;
+    int first = -1;
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                if (!in(x, y, z)) continue;
+                if (first < 0) first = (z * n + y) * n + x;
+                chi += 1;
+                chi -= in(x + 1, y, z) + in(x, y + 1, z) + in(x, y, z + 1);
+                chi += (in(x + 1, y, z) && in(x, y + 1, z) && in(x + 1, y + 1, z)) +
+                       (in(x + 1, y, z) && in(x, y, z + 1) && in(x + 1, y, z + 1)) +
+                       (in(x, y + 1, z) && in(x, y, z + 1) && in(x, y + 1, z + 1));
+                chi -= in(x + 1, y, z) && in(x, y + 1, z) && in(x, y, z + 1) && in(x + 1, y + 1, z) &&
+                       in(x + 1, y, z + 1) && in(x, y + 1, z + 1) && in(x + 1, y + 1, z + 1);
+            }
+    if (first < 0 || chi != 1) return false;
+    std::vector<char> seen(m.in.size(), 0);
+    std::vector<int> stack{first};
+    seen[std::size_t(first)] = 1;
+    std::size_t reached = 0;
+    while (!stack.empty()) {
+        const int i = stack.back();
+        stack.pop_back();
+        ++reached;
+        const int x = i % n, y = (i / n) % n, z = i / (n * n);
+        const int nb[6][3] = {{x - 1, y, z}, {x + 1, y, z}, {x, y - 1, z}, {x, y + 1, z}, {x, y, z - 1}, {x, y, z + 1}};
+        for (const auto& q : nb) {
+            if (q[0] < 0 || q[1] < 0 || q[2] < 0 || !in(q[0], q[1], q[2])) continue;
+            const int j = (q[2] * n + q[1]) * n + q[0];
+            if (!seen[std::size_t(j)]) {
+                seen[std::size_t(j)] = 1;
+                stack.push_back(j);
+            }
+        }
+    }
+    return reached == std::size_t(std::count(m.in.begin(), m.in.end(), value));
+}
+
+}  // namespace
+
+std::optional<std::array<Label, 2>> blockIsOneDisc(const openvdb::Int32Grid::ConstAccessor& labels, const Coord& lo,
+                                                   int size, const std::function<bool(Label, Label)>& allowed) {
+    CubeMask m;
+    m.n = size + 1;
+    m.in.resize(std::size_t(m.n * m.n * m.n));
+    const Label a = labels.getValue(lo);
+    Label b = a;
+    for (int z = 0; z < m.n; ++z)
+        for (int y = 0; y < m.n; ++y)
+            for (int x = 0; x < m.n; ++x) {
+                const Label l = labels.getValue(lo.offsetBy(x, y, z));
+                if (l != a) {
+                    if (b == a) b = l;
+                    else if (l != b) return std::nullopt;  // a third label
+                }
+                m.in[std::size_t((z * m.n + y) * m.n + x)] = l == a;
+            }
+    if (b == a || !allowed(std::min(a, b), std::max(a, b))) return std::nullopt;
+    if (!edgesCrossedAtMostOnce(m) || !cornersFormOneLoop(m) || !facesCrossedInOneArc(m)) return std::nullopt;
+    if (!isBall(m, 0) || !isBall(m, 1)) return std::nullopt;
+    return std::array<Label, 2>{std::min(a, b), std::max(a, b)};
+}
+
+}  // namespace jawmesh
