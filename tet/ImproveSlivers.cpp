@@ -133,6 +133,9 @@ public:
     /// target among those it changed (trialHelped); otherwise it is undone. A flip or a split
     /// that first makes things worse can open the way to a smoothing or another flip: the
     /// slivers a single step cannot mend.
+    /// Lets the lookahead make `more` trials from now on, then no more.
+    void limitTrials(std::size_t more) { trialLimit_ = trialsMade_ + more; }
+
     bool improveWithLookahead(std::int32_t t, int depth, SliverStats& st) {
         if (!alive_[std::size_t(t)] || tetScore(t) >= target_) return false;
         using Operation = bool (SliverImprover::*)(std::int32_t, SliverStats&);
@@ -142,6 +145,8 @@ public:
         for (Operation op : operations) {
             if (op == &SliverImprover::insertOnInterfaceAround && !interfaceInsertions_) continue;
             for (int k = 0;; ++k) {
+                if (trialsMade_ >= trialLimit_) return false;
+                ++trialsMade_;
                 SliverStats trial = st;
                 beginTrial();
                 forcedCandidate_ = k;
@@ -281,6 +286,10 @@ private:
             if (!seen) trial.originals.emplace_back(t, tetScore(t));
         }
     }
+
+    /// Lookahead trials made so far, and where they stop (deterministic: a count, not a clock).
+    std::size_t trialsMade_ = 0;
+    std::size_t trialLimit_ = std::numeric_limits<std::size_t>::max();
 
     void beginTrial() { trials_.push_back({m_.tets.size(), m_.nodes.size(), {}, {}}); }
 
@@ -1036,8 +1045,17 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
             bad = imp.badTets();
             if (!changed) break;
         }
-        // Iterative deepening: depth 2 only where depth 1 is stuck.
-        for (int depth = 1, pass = 0; depth <= options.lookaheadDepth && pass < options.maxPasses && !bad.empty(); ++pass) {
+        // Iterative deepening: depth 2 only where depth 1 is stuck, and beyond lookaheadDepth only
+        // for the last few.
+        int budgetedDepth = 0;
+        const auto depthAllowed = [&](int depth) {
+            if (depth <= options.lookaheadDepth) return true;
+            if (options.lookaheadDepth <= 0 || depth > options.deepLookaheadDepth || bad.size() > options.deepLookaheadTets) return false;
+            if (depth != budgetedDepth) imp.limitTrials(options.deepLookaheadTrials);
+            budgetedDepth = depth;
+            return true;
+        };
+        for (int depth = 1, pass = 0; depthAllowed(depth) && pass < options.maxPasses && !bad.empty(); ++pass) {
             ++st.passes;
             bool changed = false;
             for (auto t : bad) changed |= imp.improveWithLookahead(t, depth, st);
