@@ -1,14 +1,16 @@
 // Re-tetrahedralizes a written mesh's interface surface with other TetGen options: the interface
 // complex (every face between two labels or on the outside, seeds inside every shell) is read back
 // from a run's volumetric .msh, so sizing and quality options can be compared on real output
-// (e.g. the shared mandible) without repeating extraction and simplification.
-// Usage: bench_retet <mesh.msh> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
+// (e.g. the shared mandible) without repeating extraction and simplification. A TetGen .poly (the
+// surface a failed run keeps in failed_surface/) is read as it is, with its own seeds.
+// Usage: bench_retet <mesh.msh | surface.poly> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
 // max (edge mm), O (optimisation level), repair (attempts), improve (0/1), Y (0: TetGen may split interface triangles),
 // refine (rounds of local refinement, tet/RefineComplex.h).
 // BENCH_WRITE=<file.msh> writes the mesh.
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
 #include "io/GmshWriter.h"
+#include "io/PolyReader.h"
 #include "tet/RegionSurfaces.h"
 #include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
@@ -48,12 +50,18 @@ int main(int argc, char** argv) {
         else if (k == "refine") o.refineRounds = int(v);
         else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
     }
-    const jawmesh::TetMesh in = jawmesh::readGmsh(argv[1]);
-    // Only the vertices the interface triangles use: the mesh's interior nodes would otherwise go to
-    // TetGen as input points and be kept (the counts of session 5 were inflated by them).
-    jawmesh::InterfaceComplex c = jawmesh::meshInterfaces(in);
-    c.seeds = jawmesh::seedsInsideShells(c);
-    std::printf("input: %zu nodes, %zu tets; complex %zu triangles, %zu seeds\n", in.nodes.size(), in.tets.size(),
+    const std::string path = argv[1];
+    jawmesh::InterfaceComplex c;
+    if (path.size() > 5 && path.substr(path.size() - 5) == ".poly") {
+        c = jawmesh::readTetgenPoly(path);
+    } else {
+        const jawmesh::TetMesh in = jawmesh::readGmsh(path);
+        // Only the vertices the interface triangles use: the mesh's interior nodes would otherwise go to
+        // TetGen as input points and be kept (the counts of session 5 were inflated by them).
+        c = jawmesh::meshInterfaces(in);
+        c.seeds = jawmesh::seedsInsideShells(c);
+    }
+    std::printf("input: complex %zu vertices, %zu triangles, %zu seeds\n", c.surface.vertices.size(),
                 c.surface.triangles.size(), c.seeds.size());
     jawmesh::TetStats s;
     const auto t0 = std::chrono::steady_clock::now();

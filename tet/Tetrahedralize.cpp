@@ -1,5 +1,6 @@
 #include "tet/Tetrahedralize.h"
 
+#include "filters/OpenRegionEdges.h"
 #include "io/Error.h"
 #include "tet/ElementQuality.h"
 #include "tet/RefineComplex.h"
@@ -44,6 +45,23 @@ std::string fmt(double v) {
     return buf;
 }
 
+/// TetGen meshes a complex with a hole as readily as a closed one, and its tets then join the
+/// regions on both sides of the hole: found only after the whole run, as an open region boundary
+/// of the labelling. Checked first, so the message names the hole.
+void rejectOpenRegions(const InterfaceComplex& plc) {
+    const std::vector<OpenRegionEdge> open = openRegionEdges(plc);
+    if (open.empty()) return;
+    std::size_t edges = 0;
+    for (std::size_t i = 0; i < open.size(); ++i) edges += i == 0 || open[i].a != open[i - 1].a || open[i].b != open[i - 1].b;
+    // name a region rather than the outside (every hole is in both)
+    const auto first = std::find_if(open.begin(), open.end(), [](const OpenRegionEdge& e) { return e.label != kOutsideLabel; });
+    const OpenRegionEdge& e = first != open.end() ? *first : open[0];
+    const Vec3 p = 0.5 * (plc.surface.vertices[std::size_t(e.a)] + plc.surface.vertices[std::size_t(e.b)]);
+    throw Error(kWhat, "the interface surface has holes: " + std::to_string(edges) +
+                           " edges where a region's boundary stops (the first on the boundary of " + labelName(e.label) +
+                           " near (" + fmt(p.x()) + ", " + fmt(p.y()) + ", " + fmt(p.z()) + ")); the regions would mesh into each other");
+}
+
 void checkComplex(const InterfaceComplex& plc) {
     const auto& s = plc.surface;
     if (s.triangles.empty()) throw Error(kWhat, "the interface complex has no triangles");
@@ -64,6 +82,7 @@ void checkComplex(const InterfaceComplex& plc) {
         if (!seed.point.allFinite()) throw Error(kWhat, "a region seed is not finite");
         labelKind(seed.label);  // throws for unknown labels
     }
+    rejectOpenRegions(plc);
 }
 
 double regionVolumeBound(Label label, const TetOptions& o) {
