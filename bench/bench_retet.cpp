@@ -5,8 +5,10 @@
 // surface a failed run keeps in failed_surface/) is read as it is, with its own seeds.
 // Usage: bench_retet <mesh.msh | surface.poly> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
 // max (edge mm), O (optimisation level), repair (attempts), improve (0/1), Y (0: TetGen may split interface triangles),
-// refine (rounds of local refinement, tet/RefineComplex.h).
+// refine (rounds of local refinement, tet/RefineComplex.h), holes (1: only fill the surface's holes and list them).
 // BENCH_WRITE=<file.msh> writes the mesh.
+#include "filters/FillSurfaceHoles.h"
+#include "filters/OpenRegionEdges.h"
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
 #include "io/GmshWriter.h"
@@ -28,6 +30,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     jawmesh::TetOptions o;
+    bool holesOnly = false;
     o.boneEdgeMm = 2.0;
     o.toothEdgeMm = 1.0;
     o.pdlEdgeMm = 0.3;
@@ -48,6 +51,7 @@ int main(int argc, char** argv) {
         else if (k == "improve") o.improveSlivers = v != 0;
         else if (k == "Y") o.preserveBoundary = v != 0;
         else if (k == "refine") o.refineRounds = int(v);
+        else if (k == "holes") holesOnly = v != 0;
         else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
     }
     const std::string path = argv[1];
@@ -63,6 +67,17 @@ int main(int argc, char** argv) {
     }
     std::printf("input: complex %zu vertices, %zu triangles, %zu seeds\n", c.surface.vertices.size(),
                 c.surface.triangles.size(), c.seeds.size());
+    if (holesOnly) {  // holes=1: only the hole repair (FillSurfaceHoles.h), every patch listed
+        const auto h0 = std::chrono::steady_clock::now();
+        const jawmesh::HoleFillStats h = jawmesh::fillSurfaceHoles(c);
+        for (const jawmesh::FilledHole& f : h.filled)
+            std::printf("%s/%s: %zu edges, %.2f mm, at (%.2f, %.2f, %.2f), %s, %zu triangles\n", jawmesh::labelName(f.pair[0]).c_str(),
+                        jawmesh::labelName(f.pair[1]).c_str(), f.boundaryEdges, f.diameterMm, f.centre.x(), f.centre.y(), f.centre.z(),
+                        jawmesh::holeRepairName(f.how), f.triangles);
+        std::printf("%zu filled, %zu left, %zu stray edges, %zu open edges after, %.2f s\n", h.filled.size(), h.left.size(), h.strayEdges,
+                    jawmesh::openRegionEdges(c).size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - h0).count());
+        return 0;
+    }
     jawmesh::TetStats s;
     const auto t0 = std::chrono::steady_clock::now();
     const jawmesh::TetMesh out = jawmesh::tetrahedralize(c, o, jawmesh::noProgress(), &s);
@@ -75,6 +90,13 @@ int main(int argc, char** argv) {
                 argv[1], out.nodes.size(), out.tets.size(), perKind["bone"], perKind["tooth"], perKind["pdl"], s.minDihedralDeg,
                 s.belowMinDihedral, o.minDihedralDeg, s.slivers.badBefore, s.switches.c_str(), s.attempts, s.refineRounds, s.refinedEdges, sec,
                 r.violationCount());
+    const jawmesh::HoleFillStats& h = s.holeRepair;
+    if (!h.filled.empty())
+        std::printf("hole repair: %zu holes closed (%zu by a centroid fan), %zu triangles added, %zu removed (lids), largest %.2f mm\n",
+                    h.filled.size(), h.verticesAdded(), h.trianglesAdded(), h.trianglesRemoved(), h.largestHoleMm());
+    std::map<jawmesh::Label, std::size_t> regions;
+    for (jawmesh::Label l : out.labels) regions[l]++;
+    std::printf("regions %zu, conformal violations %zu\n", regions.size(), r.violationCount());
     // BENCH_WRITE=<file.msh>: keep the mesh (with improve=0, the raw TetGen output that
     // bench_improve_slivers can then be measured on without running TetGen again)
     if (const char* path = std::getenv("BENCH_WRITE")) jawmesh::writeGmsh(out, path);

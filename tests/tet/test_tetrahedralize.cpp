@@ -249,24 +249,6 @@ TEST(Tetrahedralize, LabelsThatChangeBetweenTilesMesh) {
     EXPECT_GT(meshed.at(kMandibleBoneLabel), 0.9 * 32 * 16 * 16 * std::pow(0.05, 3));
 }
 
-TEST(Tetrahedralize, AComplexWithAHoleIsRejectedBeforeTetgen) {
-    // One bone/outside triangle of the jaw block removed: TetGen would mesh through the hole and
-    // join the bone to the outside (the open region boundary of issue #27, found only after the run).
-    InterfaceComplex plc = complexFromVoxels(jawBlockScene());
-    std::size_t hole = 0;
-    while (plc.sides[hole] != std::array<Label, 2>{kOutsideLabel, kMandibleBoneLabel}) ++hole;
-    plc.surface.triangles.erase(plc.surface.triangles.begin() + std::ptrdiff_t(hole));
-    plc.sides.erase(plc.sides.begin() + std::ptrdiff_t(hole));
-    try {
-        tetrahedralize(plc, gradedOptions());
-        FAIL() << "no error for a complex with a hole";
-    } catch (const Error& e) {
-        const std::string what = e.what();
-        EXPECT_NE(what.find("holes: 3 edges"), std::string::npos) << what;
-        EXPECT_NE(what.find(labelName(kMandibleBoneLabel)), std::string::npos) << what;
-    }
-}
-
 TEST(Tetrahedralize, TetgenDihedralBoundIsSeparateFromTheTarget) {
     const InterfaceComplex plc = nestedSpheresComplex(1, 1.0);
     TetOptions o = gradedOptions();
