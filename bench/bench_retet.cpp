@@ -13,6 +13,7 @@
 #include "io/GmshReader.h"
 #include "io/GmshWriter.h"
 #include "io/PolyReader.h"
+#include "tet/ElementQuality.h"
 #include "tet/RegionSurfaces.h"
 #include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
@@ -97,6 +98,20 @@ int main(int argc, char** argv) {
     std::map<jawmesh::Label, std::size_t> regions;
     for (jawmesh::Label l : out.labels) regions[l]++;
     std::printf("regions %zu, conformal violations %zu\n", regions.size(), r.violationCount());
+    // BENCH_BAD=1: where the tets under the dihedral bound are, and the nearest repaired hole
+    if (std::getenv("BENCH_BAD"))
+        for (std::size_t t = 0; t < out.tets.size(); ++t) {
+            const auto& e = out.tets[t];
+            const jawmesh::TetShape sh = jawmesh::tetShape(out.nodes[std::size_t(e[0])], out.nodes[std::size_t(e[1])], out.nodes[std::size_t(e[2])], out.nodes[std::size_t(e[3])]);
+            if (sh.minDihedralDeg >= o.minDihedralDeg) continue;
+            const jawmesh::Vec3 c = (out.nodes[std::size_t(e[0])] + out.nodes[std::size_t(e[1])] + out.nodes[std::size_t(e[2])] + out.nodes[std::size_t(e[3])]) / 4.0;
+            double best = 1e9;
+            const char* how = "-";
+            for (const auto& f : h.filled)
+                if ((c - f.centre).norm() < best) { best = (c - f.centre).norm(); how = jawmesh::holeRepairName(f.how); }
+            std::printf("bad tet %.2f deg at (%.2f, %.2f, %.2f) %s, %.2f mm from a hole (%s)\n", sh.minDihedralDeg, c.x(), c.y(), c.z(),
+                        jawmesh::labelName(out.labels[t]).c_str(), best, how);
+        }
     // BENCH_WRITE=<file.msh>: keep the mesh (with improve=0, the raw TetGen output that
     // bench_improve_slivers can then be measured on without running TetGen again)
     if (const char* path = std::getenv("BENCH_WRITE")) jawmesh::writeGmsh(out, path);

@@ -34,7 +34,7 @@ std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t x) {
 }  // namespace
 
 HoleCutPatch holeCutPatch(const InterfaceComplex& complex, const TetMesh& m, const std::vector<std::array<std::int32_t, 3>>& facets,
-                          const std::vector<HoleBall>& holes) {
+                          const std::vector<HoleBall>& holes, bool sourcesAtTheirDistance) {
     HoleCutPatch patch;
     std::map<std::array<std::int32_t, 3>, std::size_t> triangleOf;
     for (std::size_t t = 0; t < complex.surface.triangles.size(); ++t) {
@@ -84,7 +84,7 @@ HoleCutPatch holeCutPatch(const InterfaceComplex& complex, const TetMesh& m, con
         }
         // A large tet on the rim of a hole can reach through it far into the other region: it
         // starts at its centroid's distance from the triangle.
-        const double d = std::sqrt(squaredDistanceToTriangle(centroid(m, std::size_t(f.tet)), complex.surface.vertices[std::size_t(tri[0])],
+        const double d = !sourcesAtTheirDistance ? 0.0 : std::sqrt(squaredDistanceToTriangle(centroid(m, std::size_t(f.tet)), complex.surface.vertices[std::size_t(tri[0])],
                                                              complex.surface.vertices[std::size_t(tri[1])], complex.surface.vertices[std::size_t(tri[2])]));
         if (d >= dist[std::size_t(f.tet)]) continue;
         label[std::size_t(f.tet)] = side;
@@ -104,7 +104,7 @@ HoleCutPatch holeCutPatch(const InterfaceComplex& complex, const TetMesh& m, con
         if (d > dist[std::size_t(t)]) continue;
         const Vec3 c = centroid(m, std::size_t(t));
         for (const std::int32_t u : next[std::size_t(t)]) {
-            if (!near[std::size_t(u)]) continue;
+            if (!near[std::size_t(u)] && label[std::size_t(u)] != kUnset) continue;  // labeled by its component
             const double du = d + (centroid(m, std::size_t(u)) - c).norm();
             if (du < dist[std::size_t(u)]) {
                 dist[std::size_t(u)] = du;

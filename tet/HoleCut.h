@@ -37,8 +37,11 @@ struct HoleCutPatch {
 /// input triangle as a tet face (TetGen -Y, the convex hull kept: -c), tets positively oriented;
 /// `facets` are sorted node triples of faces that must not be crossed besides the input triangles
 /// (TetGen's subfaces); a tet is near a hole when a node or its centroid lies in the hole's ball.
+/// With sourcesAtTheirDistance false every tet on a triangle starts at 0 (the floods then meet
+/// elsewhere in a hole; a second way when the first leaves a hole of its own).
 /// Empty when the complex is closed. Cost: O(T log T) for T tets.
 HoleCutPatch holeCutPatch(const InterfaceComplex& complex, const TetMesh& mesh,
-                          const std::vector<std::array<std::int32_t, 3>>& facets, const std::vector<HoleBall>& holes);
+                          const std::vector<std::array<std::int32_t, 3>>& facets, const std::vector<HoleBall>& holes,
+                          bool sourcesAtTheirDistance = true);
 
 }  // namespace jawmesh

@@ -444,11 +444,23 @@ std::size_t keepLabeled(TetMesh& m) {
 /// ball around each hole (radius 1.5 diameters, around its loop's centroid). The patch is taken only
 /// when each of its faces lies in such a ball: a repair is local or it is not made.
 constexpr double kHoleBallPerDiameter = 1.5;  // the ball's radius, in hole diameters
-void patchHolesFromTets(InterfaceComplex& c, const TetOptions& o, HoleFillStats& stats, std::uint64_t& childPeakBytes) {
-    const RawMesh raw = runTetgenIsolated(c, o, Attempt{"pczQYMq2", 165.0}, childPeakBytes);
+/// One way of cutting: TetGen's switches for the quick run and whether the floods stay in the balls.
+struct HoleCutWay {
+    const char* switches;
+    bool inBalls;
+    bool sourcesAtTheirDistance;  // tet/HoleCut.h
+};
+/// First in the balls over the convex hull's tets (quality-bounded, so no tet spans far through a
+/// hole); then, where that left a hole of its own (a rim tet that two triangles give different
+/// sides), over all tets of the carved mesh (TetGen drops what it reaches from the hull).
+constexpr HoleCutWay kHoleCutWays[] = {{"pczQYMq2", true, true}, {"pzQYM", false, false}};
+
+void patchHolesFromTets(InterfaceComplex& c, const TetOptions& o, const HoleCutWay& way, HoleFillStats& stats, std::uint64_t& childPeakBytes) {
+    const RawMesh raw = runTetgenIsolated(c, o, Attempt{way.switches, 165.0}, childPeakBytes);
     std::vector<HoleBall> balls;
-    for (const FilledHole& h : stats.left) balls.push_back({h.centre, kHoleBallPerDiameter * h.diameterMm});
-    const HoleCutPatch patch = holeCutPatch(c, raw.mesh, raw.facets, balls);
+    for (const FilledHole& h : stats.left)
+        balls.push_back({h.centre, way.inBalls ? kHoleBallPerDiameter * h.diameterMm : std::numeric_limits<double>::infinity()});
+    const HoleCutPatch patch = holeCutPatch(c, raw.mesh, raw.facets, balls, way.sourcesAtTheirDistance);
     if (!patch.local) return;
     std::vector<std::size_t> count(stats.left.size(), 0);
     for (const Tri& t : patch.triangles) {
@@ -498,19 +510,31 @@ const InterfaceComplex& repairHoles(const InterfaceComplex& input, InterfaceComp
     if (openRegionEdges(input).empty()) return input;
     repaired = input;
     HoleFillStats& stats = st.holeRepair;
-    for (int pass = 0; pass < kHoleRepairPasses; ++pass) {
-        const HoleFillStats more = fillSurfaceHoles(repaired);
-        stats.filled.insert(stats.filled.end(), more.filled.begin(), more.filled.end());
-        stats.left = more.left;
-        stats.strayEdges = more.strayEdges;
-        if (more.filled.empty() || (more.left.empty() && more.strayEdges == 0)) break;
-    }
-    if (!stats.left.empty() && stats.strayEdges == 0) {
-        try {
-            patchHolesFromTets(repaired, o, stats, st.childPeakMemoryBytes);
-        } catch (const Error& e) {
-            st.failedAttempts.push_back(std::string("hole patch from tets: ") + e.what());
+    const auto fillPasses = [&] {
+        for (int pass = 0; pass < kHoleRepairPasses; ++pass) {
+            const HoleFillStats more = fillSurfaceHoles(repaired);
+            stats.filled.insert(stats.filled.end(), more.filled.begin(), more.filled.end());
+            stats.left = more.left;
+            stats.strayEdges = more.strayEdges;
+            if (more.filled.empty() || (more.left.empty() && more.strayEdges == 0)) break;
         }
+    };
+    fillPasses();
+    if (stats.left.empty() || stats.strayEdges > 0) return repaired;
+    const InterfaceComplex filled = repaired;
+    const HoleFillStats filledStats = stats;
+    for (const HoleCutWay& way : kHoleCutWays) {
+        repaired = filled;
+        stats = filledStats;
+        try {
+            patchHolesFromTets(repaired, o, way, stats, st.childPeakMemoryBytes);
+        } catch (const Error& e) {
+            st.failedAttempts.push_back(std::string("hole patch from tets (") + way.switches + "): " + e.what());
+            continue;
+        }
+        if (!stats.left.empty()) continue;  // not local
+        if (!openRegionEdges(repaired).empty()) fillPasses();
+        if (openRegionEdges(repaired).empty()) break;
     }
     return repaired;
 }
