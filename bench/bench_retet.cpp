@@ -1,14 +1,19 @@
 // Re-tetrahedralizes a written mesh's interface surface with other TetGen options: the interface
 // complex (every face between two labels or on the outside, seeds inside every shell) is read back
 // from a run's volumetric .msh, so sizing and quality options can be compared on real output
-// (e.g. the shared mandible) without repeating extraction and simplification.
-// Usage: bench_retet <mesh.msh> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
+// (e.g. the shared mandible) without repeating extraction and simplification. A TetGen .poly (the
+// surface a failed run keeps in failed_surface/) is read as it is, with its own seeds.
+// Usage: bench_retet <mesh.msh | surface.poly> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
 // max (edge mm), O (optimisation level), repair (attempts), improve (0/1), Y (0: TetGen may split interface triangles),
-// refine (rounds of local refinement, tet/RefineComplex.h).
+// refine (rounds of local refinement, tet/RefineComplex.h), holes (1: only fill the surface's holes and list them).
 // BENCH_WRITE=<file.msh> writes the mesh.
+#include "filters/FillSurfaceHoles.h"
+#include "filters/OpenRegionEdges.h"
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
 #include "io/GmshWriter.h"
+#include "io/PolyReader.h"
+#include "tet/ElementQuality.h"
 #include "tet/RegionSurfaces.h"
 #include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
@@ -26,6 +31,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     jawmesh::TetOptions o;
+    bool holesOnly = false;
     o.boneEdgeMm = 2.0;
     o.toothEdgeMm = 1.0;
     o.pdlEdgeMm = 0.3;
@@ -46,15 +52,33 @@ int main(int argc, char** argv) {
         else if (k == "improve") o.improveSlivers = v != 0;
         else if (k == "Y") o.preserveBoundary = v != 0;
         else if (k == "refine") o.refineRounds = int(v);
+        else if (k == "holes") holesOnly = v != 0;
         else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
     }
-    const jawmesh::TetMesh in = jawmesh::readGmsh(argv[1]);
-    // Only the vertices the interface triangles use: the mesh's interior nodes would otherwise go to
-    // TetGen as input points and be kept (the counts of session 5 were inflated by them).
-    jawmesh::InterfaceComplex c = jawmesh::meshInterfaces(in);
-    c.seeds = jawmesh::seedsInsideShells(c);
-    std::printf("input: %zu nodes, %zu tets; complex %zu triangles, %zu seeds\n", in.nodes.size(), in.tets.size(),
+    const std::string path = argv[1];
+    jawmesh::InterfaceComplex c;
+    if (path.size() > 5 && path.substr(path.size() - 5) == ".poly") {
+        c = jawmesh::readTetgenPoly(path);
+    } else {
+        const jawmesh::TetMesh in = jawmesh::readGmsh(path);
+        // Only the vertices the interface triangles use: the mesh's interior nodes would otherwise go to
+        // TetGen as input points and be kept (the counts of session 5 were inflated by them).
+        c = jawmesh::meshInterfaces(in);
+        c.seeds = jawmesh::seedsInsideShells(c);
+    }
+    std::printf("input: complex %zu vertices, %zu triangles, %zu seeds\n", c.surface.vertices.size(),
                 c.surface.triangles.size(), c.seeds.size());
+    if (holesOnly) {  // holes=1: only the hole repair (FillSurfaceHoles.h), every patch listed
+        const auto h0 = std::chrono::steady_clock::now();
+        const jawmesh::HoleFillStats h = jawmesh::fillSurfaceHoles(c);
+        for (const jawmesh::FilledHole& f : h.filled)
+            std::printf("%s/%s: %zu edges, %.2f mm, at (%.2f, %.2f, %.2f), %s, %zu triangles\n", jawmesh::labelName(f.pair[0]).c_str(),
+                        jawmesh::labelName(f.pair[1]).c_str(), f.boundaryEdges, f.diameterMm, f.centre.x(), f.centre.y(), f.centre.z(),
+                        jawmesh::holeRepairName(f.how), f.triangles);
+        std::printf("%zu filled, %zu left, %zu stray edges, %zu open edges after, %.2f s\n", h.filled.size(), h.left.size(), h.strayEdges,
+                    jawmesh::openRegionEdges(c).size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - h0).count());
+        return 0;
+    }
     jawmesh::TetStats s;
     const auto t0 = std::chrono::steady_clock::now();
     const jawmesh::TetMesh out = jawmesh::tetrahedralize(c, o, jawmesh::noProgress(), &s);
@@ -67,6 +91,27 @@ int main(int argc, char** argv) {
                 argv[1], out.nodes.size(), out.tets.size(), perKind["bone"], perKind["tooth"], perKind["pdl"], s.minDihedralDeg,
                 s.belowMinDihedral, o.minDihedralDeg, s.slivers.badBefore, s.switches.c_str(), s.attempts, s.refineRounds, s.refinedEdges, sec,
                 r.violationCount());
+    const jawmesh::HoleFillStats& h = s.holeRepair;
+    if (!h.filled.empty())
+        std::printf("hole repair: %zu holes closed (%zu by a centroid fan), %zu triangles added, %zu removed (lids), largest %.2f mm\n",
+                    h.filled.size(), h.verticesAdded(), h.trianglesAdded(), h.trianglesRemoved(), h.largestHoleMm());
+    std::map<jawmesh::Label, std::size_t> regions;
+    for (jawmesh::Label l : out.labels) regions[l]++;
+    std::printf("regions %zu, conformal violations %zu\n", regions.size(), r.violationCount());
+    // BENCH_BAD=1: where the tets under the dihedral bound are, and the nearest repaired hole
+    if (std::getenv("BENCH_BAD"))
+        for (std::size_t t = 0; t < out.tets.size(); ++t) {
+            const auto& e = out.tets[t];
+            const jawmesh::TetShape sh = jawmesh::tetShape(out.nodes[std::size_t(e[0])], out.nodes[std::size_t(e[1])], out.nodes[std::size_t(e[2])], out.nodes[std::size_t(e[3])]);
+            if (sh.minDihedralDeg >= o.minDihedralDeg) continue;
+            const jawmesh::Vec3 c = (out.nodes[std::size_t(e[0])] + out.nodes[std::size_t(e[1])] + out.nodes[std::size_t(e[2])] + out.nodes[std::size_t(e[3])]) / 4.0;
+            double best = 1e9;
+            const char* how = "-";
+            for (const auto& f : h.filled)
+                if ((c - f.centre).norm() < best) { best = (c - f.centre).norm(); how = jawmesh::holeRepairName(f.how); }
+            std::printf("bad tet %.2f deg at (%.2f, %.2f, %.2f) %s, %.2f mm from a hole (%s)\n", sh.minDihedralDeg, c.x(), c.y(), c.z(),
+                        jawmesh::labelName(out.labels[t]).c_str(), best, how);
+        }
     // BENCH_WRITE=<file.msh>: keep the mesh (with improve=0, the raw TetGen output that
     // bench_improve_slivers can then be measured on without running TetGen again)
     if (const char* path = std::getenv("BENCH_WRITE")) jawmesh::writeGmsh(out, path);

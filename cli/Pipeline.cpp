@@ -192,7 +192,22 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         }
     });
     const SliverStats& sl = tetStats.slivers;
-    record["tetgen"] = {{"switches", tetStats.switches},
+    nlohmann::json holes = nlohmann::json::array();
+    for (const FilledHole& h : tetStats.holeRepair.filled)
+        holes.push_back({{"between", {labelName(h.pair[0]), labelName(h.pair[1])}},
+                         {"boundary_edges", h.boundaryEdges},
+                         {"diameter_mm", h.diameterMm},
+                         {"centre_mm", {h.centre.x(), h.centre.y(), h.centre.z()}},
+                         {"triangles", h.triangles},
+                         {"repair", holeRepairName(h.how)}});
+    record["tetgen"] = {{"hole_repair",
+                         {{"holes_filled", tetStats.holeRepair.filled.size()},
+                          {"triangles_added", tetStats.holeRepair.trianglesAdded()},
+                          {"vertices_added", tetStats.holeRepair.verticesAdded()},
+                          {"triangles_removed", tetStats.holeRepair.trianglesRemoved()},
+                          {"largest_hole_mm", tetStats.holeRepair.largestHoleMm()},
+                          {"holes", holes}}},
+                        {"switches", tetStats.switches},
                         {"attempts", tetStats.attempts},
                         {"failed_attempts", tetStats.failedAttempts},
                         {"refine_rounds", tetStats.refineRounds},

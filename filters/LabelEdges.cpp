@@ -6,15 +6,58 @@
 #include <algorithm>
 
 namespace jawmesh {
+namespace {
+
+using MaskTree = openvdb::MaskTree;
+
+/// Adds to `mask` the voxels of every tile face of `labels` across which the label changes into
+/// another tile (a change next to a leaf is seen from the leaf's voxels). Nothing else visits such
+/// a change when no distance band covers it: a level set whose sign jumps between inactive values
+/// (winding numbers closing a hole in the input surface, or deciding inside where overlapping
+/// shells leave no triangle) has one, and a missed change is a hole in the extracted surface.
+void addTileFacesWithLabelChanges(const openvdb::Int32Grid& labels, MaskTree& mask) {
+    using Leaf = openvdb::Int32Tree::LeafNodeType;
+    constexpr int kBlock = int(Leaf::DIM);  // tiles are unions of whole leaf-sized blocks
+    auto acc = labels.getConstAccessor();
+    openvdb::tree::ValueAccessor<MaskTree> maskAcc(mask);
+    for (auto it = labels.tree().cbeginValueAll(); it; ++it) {
+        if (!it.isTileValue() || *it == labels.background()) continue;  // background tiles: seen from the other side
+        const openvdb::CoordBBox box = it.getBoundingBox();
+        for (int axis = 0; axis < 3; ++axis) {
+            const int d1 = (axis + 1) % 3, d2 = (axis + 2) % 3;
+            for (const int side : {-1, 1}) {
+                openvdb::Coord face = box.min();
+                face[axis] = side > 0 ? box.max()[axis] : box.min()[axis];
+                for (int b1 = box.min()[d1]; b1 <= box.max()[d1]; b1 += kBlock)
+                    for (int b2 = box.min()[d2]; b2 <= box.max()[d2]; b2 += kBlock) {
+                        openvdb::Coord across = face;
+                        across[axis] += side;
+                        across[d1] = b1;
+                        across[d2] = b2;
+                        if (acc.probeConstLeaf(across) || acc.getValue(across) == *it) continue;
+                        for (int i = 0; i < kBlock; ++i)
+                            for (int j = 0; j < kBlock; ++j) {
+                                openvdb::Coord v = face;
+                                v[d1] = b1 + i;
+                                v[d2] = b2 + j;
+                                maskAcc.setValueOn(v);
+                            }
+                    }
+            }
+        }
+    }
+}
+
+}  // namespace
 
 std::vector<LabelEdge> findLabelEdges(const openvdb::Int32Grid& labels,
                                       const std::map<Label, openvdb::FloatGrid::Ptr>& distances) {
-    using MaskTree = openvdb::MaskTree;
     MaskTree mask;
     for (auto leaf = labels.tree().cbeginLeaf(); leaf; ++leaf)
         mask.touchLeaf(leaf->origin())->setValuesOn();
     for (const auto& [label, grid] : distances)
         if (grid) mask.topologyUnion(grid->tree());
+    addTileFacesWithLabelChanges(labels, mask);
     mask.voxelizeActiveTiles();
 
     std::vector<const MaskTree::LeafNodeType*> leaves;

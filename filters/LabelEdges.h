@@ -20,9 +20,11 @@ struct LabelEdge {
 };
 
 /// All label edges, sorted by (voxel, axis). Only voxels that can lie next to a label change are
-/// visited: the voxels of the label tree's leaf nodes and the active (narrow-band) voxels of the
-/// distance grids. A label change between two tiles away from every distance band (which the
-/// LabelField contract excludes: labels agree with the distance signs) would be missed.
+/// visited: the voxels of the label tree's leaf nodes, the active (narrow-band) voxels of the
+/// distance grids, and the faces of label tiles that border a tile of another label. The last
+/// are needed although labels agree with the distance signs: a repaired level set's sign can jump
+/// between inactive values with no band (across a hole in the input surface that the winding
+/// numbers closed), and a change missed there was a hole in the extracted surface.
 /// Deterministic; parallel over leaf nodes. Cost: O(visited voxels).
 std::vector<LabelEdge> findLabelEdges(const openvdb::Int32Grid& labels,
                                       const std::map<Label, openvdb::FloatGrid::Ptr>& distances);

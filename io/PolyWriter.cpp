@@ -48,7 +48,10 @@ void writeTetgenPoly(const InterfaceComplex& complex, const std::string& path) {
         }
         os << S.triangles.size() << " 1\n";
         for (std::size_t t = 0; t < S.triangles.size(); ++t) {
-            const auto& tri = S.triangles[t];
+            // The marker keeps the label pair, not its order: the normal is written pointing into
+            // the lower label, so that readTetgenPoly gets the sides back.
+            Tri tri = S.triangles[t];
+            if (complex.sides[t][0] > complex.sides[t][1]) std::swap(tri[1], tri[2]);
             const int marker = interfaceMarker(complex.sides[t][0], complex.sides[t][1]);
             if (smesh) {
                 os << "3 " << tri[0] + 1 << ' ' << tri[1] + 1 << ' ' << tri[2] + 1 << ' ' << marker << '\n';

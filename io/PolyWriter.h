@@ -11,7 +11,8 @@
 namespace jawmesh {
 
 /// Writes `complex` for TetGen: ".poly" (part 1 nodes, part 2 one single-polygon facet per
-/// triangle with its marker (1024 * min label + max label), part 3 no holes, part 4 one region per seed: point and label as the
+/// triangle with its marker (1024 * min label + max label), oriented with its normal into the lower
+/// label (io/PolyReader.h reads the sides back from that), part 3 no holes, part 4 one region per seed: point and label as the
 /// region attribute, no volume constraint) or ".smesh" (same content, the smesh layout), chosen by
 /// the extension. Indices are 1-based. Written atomically.
 /// Throws Error on I/O failure, another extension, or sides / triangles of different lengths.

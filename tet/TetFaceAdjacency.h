@@ -38,6 +38,14 @@ inline std::array<std::int32_t, 3> outwardFace(const Tet& t, int local) {
     return {t[static_cast<std::size_t>(f[0])], t[static_cast<std::size_t>(f[1])], t[static_cast<std::size_t>(f[2])]};
 }
 
+/// True when the triangles a and b (the same three nodes) are wound the same way: exact, where a
+/// normal's dot product with the opposite node misjudges a flat tet.
+inline bool sameWinding(const std::array<std::int32_t, 3>& a, const std::array<std::int32_t, 3>& b) {
+    for (int k = 0; k < 3; ++k)
+        if (a[0] == b[std::size_t(k)]) return a[1] == b[std::size_t((k + 1) % 3)];
+    return false;
+}
+
 /// True when face group g lies inside one region: shared by two tets of the same label (not an
 /// interface, not on the outside).
 inline bool insideOneRegion(const TetFaceAdjacency& adj, const TetMesh& mesh, std::size_t g) {

@@ -1,7 +1,11 @@
 #include "tet/Tetrahedralize.h"
 
+#include "filters/FillSurfaceHoles.h"
+#include "filters/OpenRegionEdges.h"
+#include "filters/SelfIntersections.h"
 #include "io/Error.h"
 #include "tet/ElementQuality.h"
+#include "tet/HoleCut.h"
 #include "tet/RefineComplex.h"
 #include "tet/TetFaceAdjacency.h"
 
@@ -17,6 +21,7 @@
 #include <cstring>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -42,6 +47,25 @@ std::string fmt(double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.9g", v);
     return buf;
+}
+
+/// TetGen meshes a complex with a hole as readily as a closed one, and its tets then join the
+/// regions on both sides of the hole: found only after the whole run, as an open region boundary
+/// of the labelling. Checked first (after the repair below), so the message names the hole.
+void rejectOpenRegions(const InterfaceComplex& plc, const HoleFillStats& repair) {
+    const std::vector<OpenRegionEdge> open = openRegionEdges(plc);
+    if (open.empty()) return;
+    std::size_t edges = 0;
+    for (std::size_t i = 0; i < open.size(); ++i) edges += i == 0 || open[i].a != open[i - 1].a || open[i].b != open[i - 1].b;
+    // name a region rather than the outside (every hole is in both)
+    const auto first = std::find_if(open.begin(), open.end(), [](const OpenRegionEdge& e) { return e.label != kOutsideLabel; });
+    const OpenRegionEdge& e = first != open.end() ? *first : open[0];
+    const Vec3 p = 0.5 * (plc.surface.vertices[std::size_t(e.a)] + plc.surface.vertices[std::size_t(e.b)]);
+    throw Error(kWhat, "the interface surface has holes: " + std::to_string(edges) +
+                           " edges where a region's boundary stops (the first on the boundary of " + labelName(e.label) +
+                           " near (" + fmt(p.x()) + ", " + fmt(p.y()) + ", " + fmt(p.z()) + "); " +
+                           std::to_string(repair.filled.size()) + " holes closed, " + std::to_string(repair.left.size()) +
+                           " could not be); the regions would mesh into each other");
 }
 
 void checkComplex(const InterfaceComplex& plc) {
@@ -190,10 +214,10 @@ RawMesh runTetgen(const InterfaceComplex& plc, const TetOptions& o, const Attemp
     for (std::size_t t = 0; t < nt; ++t) {
         Tet e;
         for (int k = 0; k < 4; ++k) e[static_cast<std::size_t>(k)] = out.tetrahedronlist[4 * t + static_cast<std::size_t>(k)];
-        const Vec3& a = m.nodes[static_cast<std::size_t>(e[0])];
-        const double det = (m.nodes[static_cast<std::size_t>(e[1])] - a)
-                               .dot((m.nodes[static_cast<std::size_t>(e[2])] - a).cross(m.nodes[static_cast<std::size_t>(e[3])] - a));
-        if (det < 0) std::swap(e[2], e[3]);
+        // Positive orientation decided exactly: without a quality bound TetGen's tets can be flat
+        // enough for a rounded determinant to get the sign wrong (the hole patch's run).
+        if (orient3dExact(m.nodes[std::size_t(e[0])], m.nodes[std::size_t(e[1])], m.nodes[std::size_t(e[2])], m.nodes[std::size_t(e[3])]) > 0)
+            std::swap(e[2], e[3]);
         m.tets[t] = e;
         if (na > 0) {
             const long seed = std::lround(out.tetrahedronattributelist[static_cast<std::size_t>(na) * t]);
@@ -363,10 +387,10 @@ void labelFromSides(const InterfaceComplex& plc, const std::vector<std::array<st
         const auto it = triangleOf.find(f.key);
         if (it == triangleOf.end()) continue;
         const Tri& tri = plc.surface.triangles[it->second];
-        const Tet& e = m.tets[std::size_t(f.tet)];
         const Vec3& a = plc.surface.vertices[std::size_t(tri[0])];
-        const Vec3 n = (plc.surface.vertices[std::size_t(tri[1])] - a).cross(plc.surface.vertices[std::size_t(tri[2])] - a);
-        const bool front = n.dot(m.nodes[std::size_t(e[std::size_t(f.local)])] - a) > 0;  // apex on the normal side
+        // on the normal side unless the triangle is wound as the tet's outward face (exact: the
+        // raw tets can be flat)
+        const bool front = !sameWinding(tri, outwardFace(m.tets[std::size_t(f.tet)], f.local));
         const Label side = plc.sides[it->second][front ? 0 : 1];
         Label& c = component[std::size_t(find(f.tet))];
         if (c == kUnset) c = side;
@@ -414,13 +438,118 @@ std::size_t keepLabeled(TetMesh& m) {
     return removed;
 }
 
+/// The holes no local triangulation closed (filters/FillSurfaceHoles.h left them) are patched with
+/// tet faces: a quick tetrahedralization of the open complex (no quality bound, in a child
+/// process, the convex hull kept so the holes have tets to cut), labeled as tet/HoleCut.h says in a
+/// ball around each hole (radius 1.5 diameters, around its loop's centroid). The patch is taken only
+/// when each of its faces lies in such a ball: a repair is local or it is not made.
+constexpr double kHoleBallPerDiameter = 1.5;  // the ball's radius, in hole diameters
+/// One way of cutting: TetGen's switches for the quick run and whether the floods stay in the balls.
+struct HoleCutWay {
+    const char* switches;
+    bool inBalls;
+    bool sourcesAtTheirDistance;  // tet/HoleCut.h
+};
+/// First in the balls over the convex hull's tets (quality-bounded, so no tet spans far through a
+/// hole); then, where that left a hole of its own (a rim tet that two triangles give different
+/// sides), over all tets of the carved mesh (TetGen drops what it reaches from the hull).
+constexpr HoleCutWay kHoleCutWays[] = {{"pczQYMq2", true, true}, {"pzQYM", false, false}};
+
+void patchHolesFromTets(InterfaceComplex& c, const TetOptions& o, const HoleCutWay& way, HoleFillStats& stats, std::uint64_t& childPeakBytes) {
+    const RawMesh raw = runTetgenIsolated(c, o, Attempt{way.switches, 165.0}, childPeakBytes);
+    std::vector<HoleBall> balls;
+    for (const FilledHole& h : stats.left)
+        balls.push_back({h.centre, way.inBalls ? kHoleBallPerDiameter * h.diameterMm : std::numeric_limits<double>::infinity()});
+    const HoleCutPatch patch = holeCutPatch(c, raw.mesh, raw.facets, balls, way.sourcesAtTheirDistance);
+    if (!patch.local) return;
+    std::vector<std::size_t> count(stats.left.size(), 0);
+    for (const Tri& t : patch.triangles) {
+        const Vec3 p = (raw.mesh.nodes[std::size_t(t[0])] + raw.mesh.nodes[std::size_t(t[1])] + raw.mesh.nodes[std::size_t(t[2])]) / 3.0;
+        std::size_t nearest = stats.left.size();
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t h = 0; h < stats.left.size(); ++h) {
+            const double d = (p - stats.left[h].centre).norm();
+            if (d <= kHoleBallPerDiameter * stats.left[h].diameterMm && d < best) {
+                best = d;
+                nearest = h;
+            }
+        }
+        if (nearest == stats.left.size()) return;  // not local: leave the complex as it is
+        ++count[nearest];
+    }
+    // TetGen keeps the input points first, in order (-z); its own points are appended.
+    const std::size_t inputPoints = c.surface.vertices.size();
+    std::map<std::int32_t, std::int32_t> added;
+    for (std::size_t i = 0; i < patch.triangles.size(); ++i) {
+        Tri t = patch.triangles[i];
+        for (auto& v : t) {
+            if (std::size_t(v) < inputPoints) continue;
+            const auto [it, fresh] = added.emplace(v, std::int32_t(c.surface.vertices.size()));
+            if (fresh) c.surface.vertices.push_back(raw.mesh.nodes[std::size_t(v)]);
+            v = it->second;
+        }
+        c.surface.triangles.push_back(t);
+        c.sides.push_back(patch.sides[i]);
+    }
+    for (std::size_t h = 0; h < stats.left.size(); ++h) {
+        if (count[h] == 0) continue;
+        FilledHole hole = stats.left[h];
+        hole.how = HoleRepair::TetCut;
+        hole.triangles = count[h];
+        stats.filled.push_back(hole);
+    }
+    stats.left.clear();
+}
+
+/// Closes the holes of `input` into `repaired`: local triangulations (filters/FillSurfaceHoles.h),
+/// pass after pass while a pass closes something, at most kHoleRepairPasses; then, for what is
+/// left, a patch of tet faces (patchHolesFromTets). A hole is a local defect of a surface that
+/// took most of the run to make. Returns the complex to mesh: `input` itself when it has no hole.
+constexpr int kHoleRepairPasses = 3;
+const InterfaceComplex& repairHoles(const InterfaceComplex& input, InterfaceComplex& repaired, const TetOptions& o, TetStats& st) {
+    if (openRegionEdges(input).empty()) return input;
+    repaired = input;
+    HoleFillStats& stats = st.holeRepair;
+    const auto fillPasses = [&] {
+        for (int pass = 0; pass < kHoleRepairPasses; ++pass) {
+            const HoleFillStats more = fillSurfaceHoles(repaired);
+            stats.filled.insert(stats.filled.end(), more.filled.begin(), more.filled.end());
+            stats.left = more.left;
+            stats.strayEdges = more.strayEdges;
+            if (more.filled.empty() || (more.left.empty() && more.strayEdges == 0)) break;
+        }
+    };
+    fillPasses();
+    if (stats.left.empty() || stats.strayEdges > 0) return repaired;
+    const InterfaceComplex filled = repaired;
+    const HoleFillStats filledStats = stats;
+    for (const HoleCutWay& way : kHoleCutWays) {
+        repaired = filled;
+        stats = filledStats;
+        try {
+            patchHolesFromTets(repaired, o, way, stats, st.childPeakMemoryBytes);
+        } catch (const Error& e) {
+            st.failedAttempts.push_back(std::string("hole patch from tets (") + way.switches + "): " + e.what());
+            continue;
+        }
+        if (!stats.left.empty()) continue;  // not local
+        if (!openRegionEdges(repaired).empty()) fillPasses();
+        if (openRegionEdges(repaired).empty()) break;
+    }
+    return repaired;
+}
+
 }  // namespace
 
 double tetVolumeForEdge(double edgeMm) { return edgeMm * edgeMm * edgeMm / (6.0 * std::sqrt(2.0)); }
 
-TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, Progress& progress, TetStats* stats) {
+TetMesh tetrahedralize(const InterfaceComplex& input, const TetOptions& options, Progress& progress, TetStats* stats) {
     ProgressStage stage(progress, "tetrahedralize");
-    checkComplex(plc);
+    checkComplex(input);
+    TetStats st;
+    InterfaceComplex repaired;
+    const InterfaceComplex& plc = repairHoles(input, repaired, options, st);
+    rejectOpenRegions(plc, st.holeRepair);
     if (!(options.radiusEdgeRatio > 1.0)) throw Error(kWhat, "the radius-edge bound must be > 1 (TetGen -q)");
     if (options.minDihedralDeg < 0 || options.minDihedralDeg >= 70)
         throw Error(kWhat, "the minimum dihedral angle must be in [0, 70) degrees");
@@ -443,9 +572,8 @@ TetMesh tetrahedralize(const InterfaceComplex& plc, const TetOptions& options, P
     ladder.push_back({switchesFor(last, 9, std::min(options.radiusEdgeRatio, 1.5)), 150.0});
     const std::size_t runs = std::min(ladder.size(), static_cast<std::size_t>(1 + std::max(0, options.repairAttempts)));
 
-    TetStats st;
-    st.inputVertices = plc.surface.vertices.size();
-    st.inputTriangles = plc.surface.triangles.size();
+    st.inputVertices = input.surface.vertices.size();
+    st.inputTriangles = input.surface.triangles.size();
     TetMesh best;
     bool haveBest = false;
     QualityStats bestQuality;

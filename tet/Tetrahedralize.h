@@ -1,6 +1,7 @@
 // Labeled, quality tetrahedral mesh of a multi-material interface complex, with TetGen 1.5.
 #pragma once
 
+#include "filters/FillSurfaceHoles.h"
 #include "io/InterfaceComplex.h"
 #include "io/Progress.h"
 #include "io/TetMesh.h"
@@ -69,6 +70,9 @@ struct TetStats {
     /// Peak resident memory of the child processes the refinement rounds ran TetGen in (not part
     /// of this process's peak), bytes.
     std::uint64_t childPeakMemoryBytes = 0;
+    /// Holes the input complex had and the patches that closed them before TetGen ran
+    /// (filters/FillSurfaceHoles.h); inputVertices / inputTriangles count the complex as given.
+    HoleFillStats holeRepair;
 };
 
 /// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.

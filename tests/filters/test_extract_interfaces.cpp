@@ -6,6 +6,7 @@
 #include "filters/TriangleGeometry.h"
 #include "filters/WellComposedLabels.h"
 #include "io/PolyWriter.h"
+#include "support/TiledSlabField.h"
 #include "support_SyntheticLabels.h"
 
 #include <gtest/gtest.h>
@@ -254,6 +255,21 @@ TEST(ExtractInterfaces, EdgeAndCornerContactsOfOneRegion) {
     EXPECT_GT(countCriticalCells(*f.labels, f.distances), 0u);
     const InterfaceComplex c = extractInterfaces(f);
     expectValidComplex(c, f);
+}
+
+TEST(ExtractInterfaces, LabelChangesBetweenTilesAreClosed) {
+    // tiles in the label tree, no distance band over them (see support/TiledSlabField.h)
+    const LabelField f = test::tiledSlabField();
+    EXPECT_GT(f.labels->tree().activeTileCount(), 0u);
+    const InterfaceComplex c = extractInterfaces(f);
+    expectValidComplex(c, f);
+    // the whole slab is enclosed: its boundary reaches the tooth tile's end, 40 voxels along x
+    double maxX = 0;
+    for (const Vec3& p : c.surface.vertices) maxX = std::max(maxX, p.x());
+    EXPECT_NEAR(maxX, 39.5 * f.voxelSizeMm, 0.5 * f.voxelSizeMm);
+    std::set<std::pair<Label, Label>> pairs;
+    for (const auto& s : c.sides) pairs.insert({s[0], s[1]});
+    EXPECT_TRUE(pairs.count({kMandibleBoneLabel, toothLabel(24)}));
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // tetrahedralize() on small complexes built in code: labels, conformity, quality, exact volumes,
 // grading, and errors for bad input.
+#include "filters/ExtractInterfaces.h"
 #include "io/Error.h"
+#include "support/TiledSlabField.h"
 #include "tet/ElementQuality.h"
 #include "tet/TetFaceAdjacency.h"
 #include "tet/TetTestComplexes.h"
@@ -230,6 +232,21 @@ TEST(Tetrahedralize, LabelsComeFromTheInterfaceSidesAndBadComplexesAreRejected) 
     InterfaceComplex badSides = plc;
     badSides.sides.pop_back();
     EXPECT_THROW(tetrahedralize(badSides, gradedOptions()), Error);
+}
+
+TEST(Tetrahedralize, LabelsThatChangeBetweenTilesMesh) {
+    // Issue #27's mechanism from the label field on: where labels change between tiles of the label
+    // tree with no distance band there, extraction left holes, and TetGen meshed the bone into the
+    // outside through them. Now the slab is closed and every region's tets fill what it encloses.
+    const InterfaceComplex c = extractInterfaces(tiledSlabField());
+    const TetMesh m = tetrahedralize(c, gradedOptions());
+    const std::map<Label, double> enclosed = complexVolumes(c), meshed = tetVolumes(m);
+    ASSERT_EQ(meshed.size(), 2u);
+    for (const auto& [label, volume] : enclosed) {
+        if (label == kOutsideLabel) continue;
+        EXPECT_NEAR(meshed.at(label), volume, 1e-9 * volume) << labelName(label);
+    }
+    EXPECT_GT(meshed.at(kMandibleBoneLabel), 0.9 * 32 * 16 * 16 * std::pow(0.05, 3));
 }
 
 TEST(Tetrahedralize, TetgenDihedralBoundIsSeparateFromTheTarget) {

@@ -1,0 +1,216 @@
+#include "filters/FillSurfaceHoles.h"
+
+#include "filters/HoleFlap.h"
+#include "filters/HoleLoops.h"
+#include "filters/SelfIntersections.h"
+#include "filters/TriangulateLoop.h"
+
+#include <algorithm>
+#include <map>
+#include <unordered_set>
+
+namespace jawmesh {
+namespace {
+
+BBox triangleBox(const SurfaceMesh& s, const Tri& t) {
+    BBox b;
+    for (const std::int32_t v : t) b.extend(s.vertices[std::size_t(v)]);
+    return b;
+}
+
+bool overlap(const BBox& a, const BBox& b) { return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all(); }
+
+/// Drops the triangles marked in `removed`, and the vertices no triangle uses then.
+void dropTriangles(InterfaceComplex& c, const std::vector<char>& removed) {
+    std::vector<Tri> kept;
+    std::vector<std::array<Label, 2>> sides;
+    for (std::size_t t = 0; t < c.surface.triangles.size(); ++t)
+        if (!removed[t]) {
+            kept.push_back(c.surface.triangles[t]);
+            sides.push_back(c.sides[t]);
+        }
+    c.surface = compactSurface(c.surface.vertices, std::move(kept));
+    c.sides = std::move(sides);
+}
+
+/// True when a patch (triangles over `positions`, global indices `patch`) is sound: no triangle
+/// degenerate, none intersecting another of the patch or a triangle of `near`.
+bool patchIsClean(const SurfaceMesh& s, const std::vector<Tri>& patch, const std::vector<Vec3>& positions,
+                  const std::vector<std::int32_t>& near) {
+    const auto corners = [&](const Tri& t, Vec3 out[3]) {
+        for (int k = 0; k < 3; ++k) {
+            const auto v = std::size_t(t[std::size_t(k)]);
+            out[k] = v < s.vertices.size() ? s.vertices[v] : positions[v - s.vertices.size()];
+        }
+    };
+    for (std::size_t i = 0; i < patch.size(); ++i) {
+        Vec3 a[3];
+        corners(patch[i], a);
+        if (triangleDegenerate(a[0], a[1], a[2])) return false;
+        BBox box;
+        for (const Vec3& x : a) box.extend(x);
+        for (std::size_t j = i + 1; j < patch.size(); ++j) {
+            Vec3 b[3];
+            corners(patch[j], b);
+            if (trianglesIntersect(a, patch[i], b, patch[j])) return false;
+        }
+        for (const std::int32_t t : near) {
+            const Tri& other = s.triangles[std::size_t(t)];
+            if (!overlap(box, triangleBox(s, other))) continue;
+            Vec3 b[3];
+            corners(other, b);
+            if (trianglesIntersect(a, patch[i], b, other)) return false;
+        }
+    }
+    return true;
+}
+
+/// Whether the sheet's triangles along the loop have sides {pair[1], pair[0]} (the loop's own
+/// winding) rather than {pair[0], pair[1]} (the majority; the loop's winding on a tie).
+bool sheetUsesLoopOrder(const InterfaceComplex& c, const HoleLoop& loop, const std::unordered_set<std::uint64_t>& loopEdges) {
+    long vote = 0;
+    for (std::size_t t = 0; t < c.surface.triangles.size(); ++t) {
+        const Tri& tri = c.surface.triangles[t];
+        const auto& sides = c.sides[t];
+        if (std::min(sides[0], sides[1]) != loop.pair[0] || std::max(sides[0], sides[1]) != loop.pair[1]) continue;
+        for (int k = 0; k < 3; ++k)
+            if (loopEdges.count(edgeKey(tri[std::size_t(k)], tri[std::size_t((k + 1) % 3)]))) {
+                vote += sides[0] == loop.pair[1] ? 1 : -1;
+                break;
+            }
+    }
+    return vote >= 0;
+}
+
+/// One loop: the patch (global indices, apex appended after the surface's vertices) or empty.
+std::vector<Tri> patchFor(const InterfaceComplex& c, const HoleLoop& loop, const std::unordered_set<std::uint64_t>& surfaceEdges,
+                          const std::vector<char>& removed, std::vector<Vec3>& apex, HoleRepair& how) {
+    const SurfaceMesh& s = c.surface;
+    std::vector<Vec3> points;
+    BBox box;
+    for (const std::int32_t v : loop.vertices) {
+        points.push_back(s.vertices[std::size_t(v)]);
+        box.extend(points.back());
+    }
+    std::vector<std::int32_t> near;
+    for (std::size_t t = 0; t < s.triangles.size(); ++t)
+        if (!removed[t] && overlap(box, triangleBox(s, s.triangles[t]))) near.push_back(std::int32_t(t));
+    const auto global = [&](std::vector<Tri> local) {
+        for (Tri& t : local)
+            for (auto& v : t) v = v < std::int32_t(loop.vertices.size()) ? loop.vertices[std::size_t(v)] : std::int32_t(s.vertices.size());
+        return local;
+    };
+    const auto allowed = [&](int i, int j) {
+        return !surfaceEdges.count(edgeKey(loop.vertices[std::size_t(i)], loop.vertices[std::size_t(j)]));
+    };
+    apex.clear();
+    how = HoleRepair::EarClipping;
+    std::vector<Tri> patch = global(earClipLoop(points, allowed));
+    if (!patch.empty() && patchIsClean(s, patch, apex, near)) return patch;
+    how = HoleRepair::MinimumArea;
+    patch = global(minimumAreaLoop(points, allowed));
+    if (!patch.empty() && patchIsClean(s, patch, apex, near)) return patch;
+    how = HoleRepair::CentroidFan;
+    apex = {loopCentroid(points)};
+    patch = global(centroidFan(points.size()));
+    if (patchIsClean(s, patch, apex, near)) return patch;
+    apex.clear();
+    return {};
+}
+
+}  // namespace
+
+std::size_t HoleFillStats::trianglesAdded() const {
+    std::size_t n = 0;
+    for (const FilledHole& h : filled) n += h.how == HoleRepair::LidRemoved ? 0 : h.triangles;
+    return n;
+}
+
+std::size_t HoleFillStats::trianglesRemoved() const {
+    std::size_t n = 0;
+    for (const FilledHole& h : filled) n += h.how == HoleRepair::LidRemoved ? h.triangles : 0;
+    return n;
+}
+
+std::size_t HoleFillStats::verticesAdded() const {
+    return std::size_t(std::count_if(filled.begin(), filled.end(), [](const FilledHole& h) { return h.how == HoleRepair::CentroidFan; }));
+}
+
+const char* holeRepairName(HoleRepair r) {
+    switch (r) {
+    case HoleRepair::EarClipping: return "ear clipping";
+    case HoleRepair::MinimumArea: return "minimum area";
+    case HoleRepair::CentroidFan: return "centroid fan";
+    case HoleRepair::TetCut: return "cut from tets";
+    case HoleRepair::LidRemoved: return "lid removed";
+    }
+    return "?";
+}
+
+double HoleFillStats::largestHoleMm() const {
+    double d = 0;
+    for (const FilledHole& h : filled) d = std::max(d, h.diameterMm);
+    return d;
+}
+
+HoleFillStats fillSurfaceHoles(InterfaceComplex& complex) {
+    HoleFillStats stats;
+    const HoleLoops found = holeLoops(complex);
+    stats.strayEdges = found.strayEdges;
+    if (found.loops.empty()) return stats;
+    SurfaceMesh& s = complex.surface;
+    std::unordered_set<std::uint64_t> surfaceEdges, closed;
+    for (const Tri& t : s.triangles)
+        for (int k = 0; k < 3; ++k) surfaceEdges.insert(edgeKey(t[std::size_t(k)], t[std::size_t((k + 1) % 3)]));
+    std::map<std::array<Label, 2>, std::unordered_set<std::uint64_t>> openEdges;  // per sheet
+    for (const HoleLoop& loop : found.loops)
+        for (std::size_t i = 0; i < loop.vertices.size(); ++i)
+            openEdges[loop.pair].insert(edgeKey(loop.vertices[i], loop.vertices[(i + 1) % loop.vertices.size()]));
+    const VertexTriangles vt = vertexTriangles(s.triangles, s.vertices.size());  // the input's triangles
+    std::vector<char> removed(s.triangles.size(), 0);
+    for (const HoleLoop& loop : found.loops) {
+        const std::size_t n = loop.vertices.size();
+        std::unordered_set<std::uint64_t> loopEdges;
+        std::vector<Vec3> points;
+        for (std::size_t i = 0; i < n; ++i) {
+            loopEdges.insert(edgeKey(loop.vertices[i], loop.vertices[(i + 1) % n]));
+            points.push_back(s.vertices[std::size_t(loop.vertices[i])]);
+        }
+        // a lid taken out for another loop has closed this one too
+        if (std::any_of(loopEdges.begin(), loopEdges.end(), [&](std::uint64_t e) { return closed.count(e) > 0; })) continue;
+        FilledHole hole{loop.pair, n, loopDiameterMm(points), loopCentroid(points), HoleRepair::LidRemoved, 0};
+        const std::vector<std::int32_t> lid = lidInsideLoop(complex, vt, loop, openEdges[loop.pair], removed);
+        if (!lid.empty()) {
+            for (const std::int32_t t : lid) {
+                removed[std::size_t(t)] = 1;
+                const Tri& tri = s.triangles[std::size_t(t)];
+                for (int k = 0; k < 3; ++k) closed.insert(edgeKey(tri[std::size_t(k)], tri[std::size_t((k + 1) % 3)]));
+            }
+            hole.triangles = lid.size();
+            stats.filled.push_back(hole);
+            continue;
+        }
+        std::vector<Vec3> apex;
+        std::vector<Tri> patch = patchFor(complex, loop, surfaceEdges, removed, apex, hole.how);
+        if (patch.empty()) {
+            stats.left.push_back(hole);
+            continue;
+        }
+        // The patch is wound with its normal into pair[1]; turned over when the sheet says so.
+        const bool loopOrder = sheetUsesLoopOrder(complex, loop, loopEdges);
+        for (Tri t : patch) {
+            if (!loopOrder) std::swap(t[1], t[2]);
+            s.triangles.push_back(t);
+            removed.push_back(0);
+            complex.sides.push_back(loopOrder ? std::array<Label, 2>{loop.pair[1], loop.pair[0]} : loop.pair);
+            for (int k = 0; k < 3; ++k) surfaceEdges.insert(edgeKey(t[std::size_t(k)], t[std::size_t((k + 1) % 3)]));
+        }
+        s.vertices.insert(s.vertices.end(), apex.begin(), apex.end());
+        hole.triangles = patch.size();
+        stats.filled.push_back(hole);
+    }
+    if (stats.trianglesRemoved() > 0) dropTriangles(complex, removed);
+    return stats;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,71 @@
+// Issue #27's two kept failures (../shared/data/failures/, read their README.md): interface
+// surfaces with holes from a run before the extraction fix, on which the tet stage lost the run.
+// With the hole repair (filters/FillSurfaceHoles.h, tet/HoleCut.h) each meshes with the run's
+// options: conformal, bone with every tooth and PDL (29 regions), no dihedral under 10 degrees.
+// Not yet met: tets beside the patches stay under 10 degrees (shells 16 left, min 0.72; bone 112,
+// min 0.40), and the bone surface takes ~18 min with the repair runs. The full requirement is kept
+// as DISABLED_ tests to enable when it is; what holds now (repaired, conformal, 29 regions) is
+// checked on the shells surface with one TetGen run (~75 s).
+#include "io/PolyReader.h"
+#include "support/TestData.h"
+#include "tet/ElementQuality.h"
+#include "tet/Tetrahedralize.h"
+#include "tet/ValidateTetMesh.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <iostream>
+#include <set>
+
+using namespace jawmesh;
+using namespace jawmesh::test;
+
+namespace {
+
+/// The options `jawmesh run` meshes with (cli/RunOptions.cpp).
+TetOptions runOptions() {
+    TetOptions o;
+    o.boneEdgeMm = 4.0;
+    o.toothEdgeMm = 2.0;
+    o.pdlEdgeMm = 0.6;
+    o.radiusEdgeRatio = 3.0;
+    o.tetgenMinDihedralDeg = 0.0;
+    return o;
+}
+
+void expectMeshes(const std::string& failure, bool requireQuality, int repairAttempts) {
+    const std::string path = sharedData("failures/" + failure + "/mandible.poly");
+    JAWMESH_REQUIRE_SHARED(path);
+    const InterfaceComplex c = readTetgenPoly(path);
+    const auto start = std::chrono::steady_clock::now();
+    TetStats stats;
+    TetOptions o = runOptions();
+    o.repairAttempts = repairAttempts;
+    const TetMesh m = tetrahedralize(c, o, noProgress(), &stats);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_FALSE(stats.holeRepair.filled.empty());
+    EXPECT_TRUE(stats.holeRepair.left.empty());
+    std::vector<int> teeth;
+    for (int unn = 18; unn <= 31; ++unn) teeth.push_back(unn);
+    const ValidationReport report = validateTetMesh(m, teeth);
+    EXPECT_TRUE(report.valid()) << toJson(report).dump(1);
+    EXPECT_EQ(std::set<Label>(m.labels.begin(), m.labels.end()).size(), 29u);
+    const QualityStats q = measureQuality(m, 10.0);
+    if (requireQuality) {
+        EXPECT_GE(q.minDihedralDeg, 10.0);
+        EXPECT_EQ(q.belowDihedralThreshold, 0u);
+    }
+    std::cout << "[ failure ] " << failure << ": " << stats.holeRepair.filled.size() << " holes closed ("
+              << stats.holeRepair.trianglesAdded() << " triangles added, " << stats.holeRepair.trianglesRemoved()
+              << " removed, largest " << stats.holeRepair.largestHoleMm() << " mm) -> " << m.tets.size() << " tets, min dihedral "
+              << q.minDihedralDeg << " deg (" << q.belowDihedralThreshold << " under 10), " << seconds << " s\n";
+}
+
+}  // namespace
+
+TEST(FailureSurfaces, OverlappingShellsIsRepairedAndMeshesConformal) { expectMeshes("overlapping-shells-open-region", false, 0); }
+
+TEST(FailureSurfaces, DISABLED_BoneWithHolesMeshesWithQuality) { expectMeshes("bone-holes-open-region", true, 2); }
+
+TEST(FailureSurfaces, DISABLED_OverlappingShellsMeshesWithQuality) { expectMeshes("overlapping-shells-open-region", true, 2); }
