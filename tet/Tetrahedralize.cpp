@@ -74,6 +74,8 @@ void checkComplex(const InterfaceComplex& plc) {
     if (plc.sides.size() != s.triangles.size())
         throw Error(kWhat, "the interface complex has " + std::to_string(plc.sides.size()) + " side pairs for " +
                                std::to_string(s.triangles.size()) + " triangles");
+    if (!plc.carried.empty())  // points on no facet, some exactly on one: TetGen may crash on them
+        throw Error(kWhat, "the interface complex still carries the adaptive extraction's vertices (simplify it, or withoutCarried)");
     if (plc.seeds.empty()) throw Error(kWhat, "the interface complex has no region seeds");
     const auto nv = static_cast<std::int64_t>(s.vertices.size());
     for (std::size_t t = 0; t < s.triangles.size(); ++t) {
