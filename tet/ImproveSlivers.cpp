@@ -1045,23 +1045,17 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
             bad = imp.badTets();
             if (!changed) break;
         }
-        // Iterative deepening: depth 2 only where depth 1 is stuck, and beyond lookaheadDepth only
-        // for the last few.
-        int budgetedDepth = 0;
-        const auto depthAllowed = [&](int depth) {
-            if (depth <= options.lookaheadDepth) return true;
-            if (options.lookaheadDepth <= 0 || depth > options.deepLookaheadDepth || bad.size() > options.deepLookaheadTets) return false;
-            if (depth != budgetedDepth) imp.limitTrials(options.deepLookaheadTrials);
-            budgetedDepth = depth;
-            return true;
+        // Iterative deepening: depth 2 only where depth 1 is stuck.
+        const auto deepen = [&](int fromDepth, int toDepth) {
+            for (int depth = fromDepth, pass = 0; depth <= toDepth && pass < options.maxPasses && !bad.empty(); ++pass) {
+                ++st.passes;
+                bool changed = false;
+                for (auto t : bad) changed |= imp.improveWithLookahead(t, depth, st);
+                bad = imp.badTets();
+                if (!changed) ++depth;
+            }
         };
-        for (int depth = 1, pass = 0; depthAllowed(depth) && pass < options.maxPasses && !bad.empty(); ++pass) {
-            ++st.passes;
-            bool changed = false;
-            for (auto t : bad) changed |= imp.improveWithLookahead(t, depth, st);
-            bad = imp.badTets();
-            if (!changed) ++depth;
-        }
+        deepen(1, options.lookaheadDepth);
         // The last resort, then the usual operations again around what it moved.
         std::map<Label, double> pushedVolume;
         if (options.interfacePushMm > 0 && !bad.empty()) {
@@ -1072,7 +1066,14 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
                 changed = false;
                 for (auto t : imp.badTets()) changed |= imp.improve(t, st);
             }
+            bad = imp.badTets();
         }
+        // Deeper lookaheads for the last few, each depth within its count of trials.
+        if (options.lookaheadDepth > 0 && bad.size() <= options.deepLookaheadTets)
+            for (int depth = options.lookaheadDepth + 1; depth <= options.deepLookaheadDepth && !bad.empty(); ++depth) {
+                imp.limitTrials(options.deepLookaheadTrials);
+                deepen(depth, depth);
+            }
         imp.compact();
         // Every operation re-triangulates a cavity of one region (or splits an interface in
         // place; pushes move it by what they recorded): a region whose volume changed otherwise

@@ -45,9 +45,9 @@ struct SliverOptions {
     /// Depth of that lookahead (0: none). On the shared mandible 41 tets under 10 degrees are left
     /// without it, 12 with depth 1 (+7 s), 6 with depth 2 (+270 s).
     int lookaheadDepth = 1;
-    /// Deeper lookaheads (when lookaheadDepth > 0), up to this depth, once no more than deepLookaheadTets bad tets are left:
-    /// their cost grows with the tets they start from, so they are kept for the last few (the
-    /// adaptive mandible surface: 3 left at depth 1, 0 at depth 3 in 0.6 s).
+    /// Deeper lookaheads (when lookaheadDepth > 0), up to this depth, after the pushes, when no
+    /// more than deepLookaheadTets bad tets are left: their cost grows with the tets they start
+    /// from, so they are kept for the last few (the adaptive mandible surface: 3 left, 0 at depth 2).
     int deepLookaheadDepth = 2;
     std::size_t deepLookaheadTets = 8;
     /// Trials each deeper level may make in all, nested ones included (a count, not a clock, so the
