@@ -98,7 +98,7 @@ InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions
     openvdb::Int32Grid::Ptr labels = labelsToExtract(field, options, progress, stats);
     stage.update(0.3);
 
-    const std::vector<LabelEdge> edges = findLabelEdges(*labels, field.distances);
+    std::vector<LabelEdge> edges = findLabelEdges(*labels, field.distances);
     const std::vector<Coord> cells = dualCellsOf(edges);
     progress.checkCancelled();
     stage.update(0.4);
@@ -135,6 +135,7 @@ InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions
     stage.update(0.6);
 
     const std::vector<DualQuad> quads = dualQuadsOf(edges, cells, *labels, mirrored);
+    std::vector<LabelEdge>().swap(edges);  // 16 bytes per quad, not needed from here on
     stage.update(0.65);
     AdaptiveSurface adaptive =
         adaptiveSurface(*labels, cells, quads, out.surface.vertices, options.adaptive, progress,

@@ -1,6 +1,7 @@
 #include "filters/LabelEdges.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -97,20 +98,39 @@ std::vector<LabelEdge> findLabelEdges(const openvdb::Int32Grid& labels,
 }
 
 std::vector<openvdb::Coord> dualCellsOf(const std::vector<LabelEdge>& edges) {
-    std::vector<openvdb::Coord> cells(edges.size() * 4);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 4096), [&](const auto& r) {
+    // Each edge's four cells are marked in a mask (one per thread, then united: the same set
+    // whatever the threads), and only the distinct cells are sorted. Sorting the four copies of
+    // every cell instead took 1.3 GB and about a tenth of the extraction on the shared mandible.
+    tbb::enumerable_thread_specific<MaskTree> masks;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 1 << 16), [&](const auto& r) {
+        openvdb::tree::ValueAccessor<MaskTree> acc(masks.local());
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const int d1 = (edges[i].axis + 1) % 3, d2 = (edges[i].axis + 2) % 3;
             for (int k = 0; k < 4; ++k) {
                 openvdb::Coord c = edges[i].voxel;
                 c[d1] -= (k & 1);
                 c[d2] -= (k >> 1);
-                cells[4 * i + k] = c;
+                acc.setValueOn(c);
             }
         }
     });
+    MaskTree all;
+    for (MaskTree& m : masks) all.topologyUnion(m);
+    masks.clear();
+    std::vector<const MaskTree::LeafNodeType*> leaves;
+    std::vector<std::size_t> start(1, 0);
+    for (auto leaf = all.cbeginLeaf(); leaf; ++leaf) {
+        leaves.push_back(leaf.getLeaf());
+        start.push_back(start.back() + leaf->onVoxelCount());
+    }
+    std::vector<openvdb::Coord> cells(start.back());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            std::size_t at = start[i];
+            for (auto it = leaves[i]->cbeginValueOn(); it; ++it) cells[at++] = it.getCoord();
+        }
+    });
     tbb::parallel_sort(cells.begin(), cells.end());
-    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
     return cells;
 }
 

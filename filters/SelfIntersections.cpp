@@ -192,13 +192,27 @@ void boundsFunc(const RTCBoundsFunctionArguments* args) {
 
 using PairList = std::vector<std::pair<std::int32_t, std::int32_t>>;
 
+/// What the collision callback needs: the mesh, and per thread the intersecting pairs found.
+struct CollideData {
+    const SurfaceMesh* mesh;
+    tbb::enumerable_thread_specific<PairList> hits;
+};
+
+// Candidates are tested as Embree reports them and only hits are kept: a list of all candidate
+// pairs (about a dozen per triangle, mostly neighbours) took 2.2 GB on 5.9 M triangles.
 void collideFunc(void* userPtr, RTCCollision* collisions, unsigned int count) {
-    auto& local = static_cast<tbb::enumerable_thread_specific<PairList>*>(userPtr)->local();
+    auto& data = *static_cast<CollideData*>(userPtr);
+    const SurfaceMesh& mesh = *data.mesh;
+    auto& local = data.hits.local();
     for (unsigned int i = 0; i < count; ++i) {
         auto a = std::int32_t(collisions[i].primID0), b = std::int32_t(collisions[i].primID1);
         if (a == b) continue;
         if (a > b) std::swap(a, b);
-        local.emplace_back(a, b);
+        const Tri& ta = mesh.triangles[std::size_t(a)];
+        const Tri& tb = mesh.triangles[std::size_t(b)];
+        const Vec3 pa[3] = {mesh.vertices[ta[0]], mesh.vertices[ta[1]], mesh.vertices[ta[2]]};
+        const Vec3 pb[3] = {mesh.vertices[tb[0]], mesh.vertices[tb[1]], mesh.vertices[tb[2]]};
+        if (trianglesIntersect(pa, ta, pb, tb)) local.emplace_back(a, b);
     }
 }
 
@@ -298,25 +312,11 @@ SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh) {
     rtcReleaseGeometry(geom);
     rtcCommitScene(scene);
 
-    tbb::enumerable_thread_specific<PairList> candidates;
-    rtcCollide(scene, scene, collideFunc, &candidates);
-    PairList all;
-    for (auto& local : candidates) all.insert(all.end(), local.begin(), local.end());
-    tbb::parallel_sort(all.begin(), all.end());
-    all.erase(std::unique(all.begin(), all.end()), all.end());
-
-    std::vector<char> hit(all.size(), 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all.size(), 1024), [&](const auto& r) {
-        for (std::size_t k = r.begin(); k != r.end(); ++k) {
-            const Tri& ta = mesh.triangles[all[k].first];
-            const Tri& tb = mesh.triangles[all[k].second];
-            const Vec3 pa[3] = {mesh.vertices[ta[0]], mesh.vertices[ta[1]], mesh.vertices[ta[2]]};
-            const Vec3 pb[3] = {mesh.vertices[tb[0]], mesh.vertices[tb[1]], mesh.vertices[tb[2]]};
-            hit[k] = trianglesIntersect(pa, ta, pb, tb) ? 1 : 0;
-        }
-    });
-    for (std::size_t k = 0; k < all.size(); ++k)
-        if (hit[k]) report.pairs.push_back(all[k]);
+    CollideData collide{&mesh, {}};
+    rtcCollide(scene, scene, collideFunc, &collide);
+    for (auto& local : collide.hits) report.pairs.insert(report.pairs.end(), local.begin(), local.end());
+    std::sort(report.pairs.begin(), report.pairs.end());  // the same list whatever the threads
+    report.pairs.erase(std::unique(report.pairs.begin(), report.pairs.end()), report.pairs.end());
     return report;
 }
 
