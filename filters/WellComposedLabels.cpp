@@ -131,10 +131,21 @@ bool fixCell(const std::array<Label, 8>& lab, const std::array<openvdb::Coord, 8
     return false;
 }
 
+/// The dual cells that have a fixed voxel as a corner, sorted.
+std::vector<openvdb::Coord> cellsAround(const std::vector<Fix>& fixes) {
+    std::vector<openvdb::Coord> cells;
+    cells.reserve(8 * fixes.size());
+    for (const Fix& f : fixes)
+        for (int k = 0; k < 8; ++k) cells.push_back(f.voxel - openvdb::Coord(k & 1, (k >> 1) & 1, k >> 2));
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    return cells;
+}
+
+/// Fixes for the critical cells among `cells`.
 std::vector<Fix> proposeFixes(const openvdb::Int32Grid& labels,
                               const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
-                              Progress& progress) {
-    const auto cells = dualCellsOf(findLabelEdges(labels, distances));
+                              const std::vector<openvdb::Coord>& cells, Progress& progress) {
     std::vector<std::vector<Fix>> chunks((cells.size() + 4095) / 4096);
     tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t chunk) {
         progress.checkCancelled();
@@ -181,10 +192,14 @@ std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
                                    const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
                                    Progress& progress) {
     std::size_t relabelled = 0;
+    // After the first sweep only the cells around what it changed are looked at again: a cell
+    // none of whose corners changed is as it was, and every critical cell changed a corner.
+    std::vector<openvdb::Coord> cells = dualCellsOf(findLabelEdges(labels, distances));
     for (int sweep = 0; sweep < 256; ++sweep) {
         progress.checkCancelled();
-        const auto fixes = proposeFixes(labels, distances, progress);
+        const auto fixes = proposeFixes(labels, distances, cells, progress);
         if (fixes.empty()) return relabelled;
+        cells = cellsAround(fixes);
         auto acc = labels.getAccessor();
         for (const Fix& f : fixes) acc.setValue(f.voxel, f.to);
         relabelled += fixes.size();
@@ -194,7 +209,7 @@ std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
 
 std::size_t countCriticalCells(const openvdb::Int32Grid& labels,
                                const std::map<Label, openvdb::FloatGrid::Ptr>& distances) {
-    return proposeFixes(labels, distances, noProgress()).size();
+    return proposeFixes(labels, distances, dualCellsOf(findLabelEdges(labels, distances)), noProgress()).size();
 }
 
 }  // namespace jawmesh
