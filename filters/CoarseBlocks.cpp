@@ -126,46 +126,43 @@ bool cornersFormOneLoop(const CubeMask& m) {
 }
 
 /// One 6-connected component with Euler characteristic 1 (vertices - edges + squares - cubes of the
-/// voxel complex): a ball.
+/// voxel complex): a ball. On a copy padded by one empty layer on every side, so that neighbours
+/// need no bounds checks (this test was an eighth of the extraction's time).
 bool isBall(const CubeMask& m, char value) {
-    const int n = m.n;
-    const auto in = [&](int x, int y, int z) { return x < n && y < n && z < n && m.at(x, y, z) == value; };
-    long chi = 0;
-    int first = -1;
+    const int n = m.n, s = n + 2;
+    const int dy = s, dz = s * s;
+    std::vector<char> p(std::size_t(s * s * s), 0);
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                if (!in(x, y, z)) continue;
-                if (first < 0) first = (z * n + y) * n + x;
-                chi += 1;
-                chi -= in(x + 1, y, z) + in(x, y + 1, z) + in(x, y, z + 1);
-                chi += (in(x + 1, y, z) && in(x, y + 1, z) && in(x + 1, y + 1, z)) +
-                       (in(x + 1, y, z) && in(x, y, z + 1) && in(x + 1, y, z + 1)) +
-                       (in(x, y + 1, z) && in(x, y, z + 1) && in(x, y + 1, z + 1));
-                chi -= in(x + 1, y, z) && in(x, y + 1, z) && in(x, y, z + 1) && in(x + 1, y + 1, z) &&
-                       in(x + 1, y, z + 1) && in(x, y + 1, z + 1) && in(x + 1, y + 1, z + 1);
+            for (int x = 0; x < n; ++x) p[std::size_t((z + 1) * dz + (y + 1) * dy + x + 1)] = m.at(x, y, z) == value;
+    long chi = 0;
+    int first = -1, count = 0;
+    for (int z = 1; z <= n; ++z)
+        for (int y = 1; y <= n; ++y)
+            for (int i = z * dz + y * dy + 1, end = i + n; i < end; ++i) {
+                if (!p[std::size_t(i)]) continue;
+                if (first < 0) first = i;
+                ++count;
+                const auto at = [&](int offset) { return int(p[std::size_t(i + offset)]); };
+                const int X = at(1), Y = at(dy), Z = at(dz);
+                const int XY = X & Y & at(1 + dy), XZ = X & Z & at(1 + dz), YZ = Y & Z & at(dy + dz);
+                chi += 1 - X - Y - Z + XY + XZ + YZ - (XY & XZ & YZ & at(1 + dy + dz));
             }
     if (first < 0 || chi != 1) return false;
-    std::vector<char> seen(m.in.size(), 0);
     std::vector<int> stack{first};
-    seen[std::size_t(first)] = 1;
-    std::size_t reached = 0;
+    p[std::size_t(first)] = 0;  // reached voxels are cleared
+    int reached = 0;
     while (!stack.empty()) {
         const int i = stack.back();
         stack.pop_back();
         ++reached;
-        const int x = i % n, y = (i / n) % n, z = i / (n * n);
-        const int nb[6][3] = {{x - 1, y, z}, {x + 1, y, z}, {x, y - 1, z}, {x, y + 1, z}, {x, y, z - 1}, {x, y, z + 1}};
-        for (const auto& q : nb) {
-            if (q[0] < 0 || q[1] < 0 || q[2] < 0 || !in(q[0], q[1], q[2])) continue;
-            const int j = (q[2] * n + q[1]) * n + q[0];
-            if (!seen[std::size_t(j)]) {
-                seen[std::size_t(j)] = 1;
-                stack.push_back(j);
+        for (const int offset : {-1, 1, -dy, dy, -dz, dz})
+            if (p[std::size_t(i + offset)]) {
+                p[std::size_t(i + offset)] = 0;
+                stack.push_back(i + offset);
             }
-        }
     }
-    return reached == std::size_t(std::count(m.in.begin(), m.in.end(), value));
+    return reached == count;
 }
 
 }  // namespace
