@@ -364,6 +364,92 @@ nlohmann::json toJson(const AdaptiveStats& s) {
             {"seconds", s.seconds}};
 }
 
+namespace {
+
+/// What the certification needs besides the mesh.
+struct CertifyRule {
+    const AdaptiveOptions& options;
+    int top;                                     ///< the largest level
+    openvdb::BoolGrid::ConstAccessor nearTeeth;  ///< top-level blocks near a tooth or PDL
+    double cosMinAngle;
+};
+
+/// The dirty blocks (with members) whose fan fails its shape or error test, in block order.
+std::vector<std::size_t> failingBlocks(Mesh& mesh, const std::vector<char>& dirty, const CertifyRule& rule) {
+    std::vector<std::size_t> todo;
+    for (std::size_t b = 0; b < mesh.blocks.size(); ++b)
+        if (dirty[b] && !mesh.blocks[b].members.empty()) todo.push_back(b);
+    std::vector<char> failed(todo.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const auto& r) {
+        Scratch s;
+        auto nearAcc = rule.nearTeeth;  // accessors are per thread
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            Block& k = mesh.blocks[todo[i]];
+            mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
+            const bool nearTeeth = nearAcc.isValueOn(blockOf(k.lo, rule.top - k.level));
+            const double bound = rule.options.bounds.boundMm(k.sides[0], k.sides[1], nearTeeth);
+            failed[i] = !fanShapeOk(mesh, s, rule.cosMinAngle, rule.options.minWedgeDeg) ||
+                        !errorsWithin(k, mesh, s, rule.options.carriedFraction * bound, rule.options.sampleFraction * bound);
+        }
+    });
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < todo.size(); ++i)
+        if (failed[i]) out.push_back(todo[i]);
+    return out;
+}
+
+/// Splits the `split` blocks into their certified children (or back to fine cells when `toFine`);
+/// their children and the blocks around them are marked dirty.
+void splitBlocks(Mesh& mesh, const std::vector<std::size_t>& split, bool toFine, const openvdb::Int32Grid& labels,
+                 const std::vector<Coord>& cells, int ringVoxels, std::vector<char>& dirty) {
+    auto acc = labels.getConstAccessor();
+    for (std::size_t b : split) {
+        neighbourBlocks(mesh, mesh.blocks[b], dirty);
+        mesh.release(b);
+        std::vector<Block> children;
+        if (!toFine)
+            chooseInChildren(acc, cells, mesh.blocks[b].lo, mesh.blocks[b].level, ringVoxels, mesh.blocks[b].members, children);
+        mesh.blocks[b].members.clear();
+        for (Block& c : children) {
+            mesh.blocks.push_back(std::move(c));
+            mesh.assign(mesh.blocks.size() - 1);
+        }
+        dirty.resize(mesh.blocks.size(), 1);  // new children are checked
+    }
+    for (std::size_t b : split) dirty[b] = 0;
+}
+
+/// The carried cells of every merged block, by the emitted triangle that carries them, and the
+/// sample error of every fan's corners; counts the blocks in `st`.
+void collectCarried(Mesh& mesh, std::size_t cellCount, AdaptiveSurface& out, AdaptiveStats& st) {
+    out.sampleErrorMm.assign(cellCount, 0.0f);
+    bool anyBlock = false;
+    for (const Block& k : mesh.blocks) anyBlock = anyBlock || !k.members.empty();
+    if (!anyBlock) return;
+    const VertexTriangles around = vertexTriangles(out.triangles, cellCount);
+    out.carried.assign(out.triangles.size(), {});
+    Scratch s;
+    for (Block& k : mesh.blocks) {
+        if (k.members.empty()) continue;
+        // the fan as certified, in trianglesAt's order: map its indices to the emitted triangles
+        mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
+        std::vector<std::int32_t> emitted(s.fan.size(), -1);
+        for (std::size_t i = 0; i < s.fan.size(); ++i)
+            for (const std::int32_t* t = around.begin(k.vertex); t != around.end(k.vertex); ++t)
+                if (out.triangles[std::size_t(*t)] == s.fan[i]) emitted[i] = *t;
+        for (std::size_t i = 0; i < k.members.size(); ++i)
+            if (k.members[i] != k.vertex) out.carried[std::size_t(emitted[std::size_t(k.carrier[i])])].push_back(k.members[i]);
+        for (const Tri& t : s.fan)
+            for (std::int32_t c : t) out.sampleErrorMm[std::size_t(c)] = std::max(out.sampleErrorMm[std::size_t(c)], k.sampleErrorMm);
+        ++st.blocks;
+        st.cellsMerged += k.members.size();
+        st.maxCarriedErrorMm = std::max(st.maxCarriedErrorMm, double(k.carriedErrorMm));
+        st.maxSampleErrorMm = std::max(st.maxSampleErrorMm, double(k.sampleErrorMm));
+    }
+}
+
+}  // namespace
+
 AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vector<Coord>& cells, const std::vector<DualQuad>& quads,
                                 const std::vector<Vec3>& P, const AdaptiveOptions& options, Progress& progress,
                                 AdaptiveStats* stats) {
@@ -389,33 +475,15 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
     const double voxelMm = labels.voxelSize()[0];
     const auto near = top > 0 ? blocksNearTeeth(quads, cells, top, voxelMm * double(1 << top), options.boneNearTeethMm)
                               : openvdb::BoolGrid::create(false);
-    const auto nearAcc = near->getConstAccessor();
-    const double cosMinAngle = std::cos(options.minAngleDeg * 3.14159265358979323846 / 180.0);
+    const CertifyRule rule{options, top, near->getConstAccessor(), std::cos(options.minAngleDeg * 3.14159265358979323846 / 180.0)};
     std::vector<char> dirty(mesh.blocks.size(), 1);
     // Certify what changed until every block passes; then the exact intersection check of the
     // whole surface, whose blocks go back to fine cells; until it is clean.
     for (int round = 0;; ++round) {
-        std::vector<std::size_t> todo;
-        for (std::size_t b = 0; b < mesh.blocks.size(); ++b)
-            if (dirty[b] && !mesh.blocks[b].members.empty()) todo.push_back(b);
-        std::vector<char> failed(todo.size(), 0);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const auto& r) {
-            Scratch s;
-            for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                Block& k = mesh.blocks[todo[i]];
-                mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
-                const bool nearTeeth = nearAcc.isValueOn(blockOf(k.lo, top - k.level));
-                const double bound = options.bounds.boundMm(k.sides[0], k.sides[1], nearTeeth);
-                failed[i] = !fanShapeOk(mesh, s, cosMinAngle, options.minWedgeDeg) ||
-                            !errorsWithin(k, mesh, s, options.carriedFraction * bound, options.sampleFraction * bound);
-            }
-        });
+        std::vector<std::size_t> split = failingBlocks(mesh, dirty, rule);
         std::fill(dirty.begin(), dirty.end(), 0);
-        std::vector<std::size_t> split;
-        for (std::size_t i = 0; i < todo.size(); ++i)
-            if (failed[i]) split.push_back(todo[i]);
         st.splitForError += split.size();
-        bool toFine = false;
+        bool toFine = round >= 64;  // a safety net: rounds end long before
         if (split.empty()) {
             emitQuadTriangles(quads, mesh.vertexOf, P, out.triangles, out.sides);
             if (mesh.blocks.empty()) break;
@@ -426,53 +494,10 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
             toFine = true;  // no second try for a block at an intersection
         }
         ++st.rounds;
-        // Split (or drop) them; their children and the blocks around them are checked again.
-        auto acc = labels.getConstAccessor();
-        for (std::size_t b : split) {
-            neighbourBlocks(mesh, mesh.blocks[b], dirty);
-            mesh.release(b);
-            std::vector<Block> children;
-            if (!toFine && round < 64)
-                chooseInChildren(acc, cells, mesh.blocks[b].lo, mesh.blocks[b].level, options.ringVoxels,
-                                 mesh.blocks[b].members, children);
-            mesh.blocks[b].members.clear();
-            for (Block& c : children) {
-                mesh.blocks.push_back(std::move(c));
-                mesh.assign(mesh.blocks.size() - 1);
-            }
-            dirty.resize(mesh.blocks.size(), 1);  // new children are checked
-        }
-        for (std::size_t b : split) dirty[b] = 0;
+        splitBlocks(mesh, split, toFine, labels, cells, options.ringVoxels, dirty);
         progress.checkCancelled();
     }
-    // Carried cells (by the triangle of the emitted list that carries them) and sample errors.
-    out.sampleErrorMm.assign(cells.size(), 0.0f);
-    bool anyBlock = false;
-    for (const Block& k : mesh.blocks) anyBlock = anyBlock || !k.members.empty();
-    if (anyBlock) {
-        const VertexTriangles around = vertexTriangles(out.triangles, cells.size());
-        out.carried.assign(out.triangles.size(), {});
-        Scratch s;
-        for (Block& k : mesh.blocks) {
-            if (k.members.empty()) continue;
-            // the fan as certified, in trianglesAt's order: map its indices to the emitted triangles
-            mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
-            std::vector<std::int32_t> emitted(s.fan.size(), -1);
-            for (std::size_t i = 0; i < s.fan.size(); ++i)
-                for (const std::int32_t* t = around.begin(k.vertex); t != around.end(k.vertex); ++t) {
-                    const Tri& e = out.triangles[std::size_t(*t)];
-                    if (e == s.fan[i]) emitted[i] = *t;
-                }
-            for (std::size_t i = 0; i < k.members.size(); ++i)
-                if (k.members[i] != k.vertex) out.carried[std::size_t(emitted[std::size_t(k.carrier[i])])].push_back(k.members[i]);
-            for (const Tri& t : s.fan)
-                for (std::int32_t c : t) out.sampleErrorMm[std::size_t(c)] = std::max(out.sampleErrorMm[std::size_t(c)], k.sampleErrorMm);
-            ++st.blocks;
-            st.cellsMerged += k.members.size();
-            st.maxCarriedErrorMm = std::max(st.maxCarriedErrorMm, double(k.carriedErrorMm));
-            st.maxSampleErrorMm = std::max(st.maxSampleErrorMm, double(k.sampleErrorMm));
-        }
-    }
+    collectCarried(mesh, cells.size(), out, st);
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }
