@@ -72,6 +72,8 @@ const NumberKey kNumberKeys[] = {
 
 void checkRanges(const std::string& name, RunOptions& o) {
     for (const auto& k : kNumberKeys) requireRange(name, k.key, k.ref(o), k.lo, k.hi, k.loOpen);
+    const int levels = o.extract.adaptive.maxLevel;
+    requireRange(name, "surface_adaptive_levels", levels, 0, 6);
     if (o.carve.profile) {
         requireRange(name, "pdl_profile_mm", o.carve.profile->cervical, 0, 10, true);
         requireRange(name, "pdl_profile_mm", o.carve.profile->midRoot, 0, 10, true);
@@ -101,6 +103,7 @@ nlohmann::json runOptionsToJson(const RunOptions& options) {
     RunOptions o = options;  // the key table hands out references
     nlohmann::json j = nlohmann::json::object();
     for (const auto& k : kNumberKeys) j[k.key] = k.ref(o);
+    j["surface_adaptive_levels"] = o.extract.adaptive.maxLevel;
     j["write_levelsets"] = o.writeLevelSets;
     j["from_vdb"] = o.fromVdb;
     if (o.carve.profile)
@@ -130,6 +133,12 @@ void applyRunConfigText(const std::string& text, const std::string& path, RunOpt
         if (!known.contains(key) && key != "pdl_profile_mm") throw Error(path, "unknown config key '" + key + "'");
     try {
         for (const auto& k : kNumberKeys) readKey(j, k.key, k.ref(o));
+        if (j.contains("surface_adaptive_levels")) {  // a whole number: 2.5 levels is a mistake, not 2
+            const double levels = j.at("surface_adaptive_levels").get<double>();
+            if (levels != std::floor(levels) || !(levels >= 0 && levels <= 6))
+                throw Error(path, "'surface_adaptive_levels' must be a whole number from 0 to 6");
+            o.extract.adaptive.maxLevel = int(levels);
+        }
         readKey(j, "write_levelsets", o.writeLevelSets);
         readKey(j, "from_vdb", o.fromVdb);
         if (j.contains("pdl_profile_mm")) {

@@ -51,4 +51,17 @@ TEST(RunOptions, RefusesOutOfRangeValuesNamingTheKey) {
     }
     RunOptions o = defaultRunOptions();
     EXPECT_THROW(applyRunConfigText(R"({"surface_pdl_max_edge": 0.5})", "typo.json", o), Error);
+    // the adaptive extraction's levels: a whole number from 0 (the fine extraction) to 6
+    for (const char* bad : {R"({"surface_adaptive_levels": 2.5})", R"({"surface_adaptive_levels": 7})",
+                            R"({"surface_adaptive_levels": -1})"}) {
+        try {
+            applyRunConfigText(bad, "levels.json", o);
+            ADD_FAILURE() << bad << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("'surface_adaptive_levels'"), std::string::npos) << e.what();
+        }
+    }
+    applyRunConfigText(R"({"surface_adaptive_levels": 0})", "fine.json", o);
+    EXPECT_EQ(o.extract.adaptive.maxLevel, 0);
+    EXPECT_EQ(runOptionsToJson(o).at("surface_adaptive_levels"), 0);
 }
