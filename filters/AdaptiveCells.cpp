@@ -8,11 +8,13 @@
 
 #include <openvdb/tools/Morphology.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
+
 
 namespace jawmesh {
 namespace {
@@ -202,24 +204,30 @@ struct Scratch {
     std::vector<EdgeFanTriangle> wedge;
 };
 
-/// No triangle at the block's vertex has an angle under the minimum, and no region spans a wedge
-/// under the minimum at their edges: the simplification could not always remove such shapes, and
+/// No triangle at the block's vertex has an angle under the minimum or an edge longer than its
+/// interface allows (the simplification only bounds the edges it makes), and no region spans a
+/// wedge under the minimum at their edges: the simplification could not always remove such shapes, and
 /// TetGen under -Y must keep them (slivers).
-bool fanShapeOk(const Mesh& mesh, Scratch& s, double cosMinAngle, double minWedgeDeg) {
+bool fanShapeOk(const Mesh& mesh, Scratch& s, double cosMinAngle, double minWedgeDeg, const InterfaceBounds& bounds) {
     const auto& P = mesh.P;
-    for (const Tri& f : s.fan) {
+    for (std::size_t i = 0; i < s.fan.size(); ++i) {
+        const Tri& f = s.fan[i];
         if (smallestAngleCosine(P[std::size_t(f[0])], P[std::size_t(f[1])], P[std::size_t(f[2])]) > cosMinAngle) return false;
+        const double maxEdge = bounds.maxEdgeMm(s.fanSides[i][0], s.fanSides[i][1]);
+        for (int k = 0; k < 3; ++k)
+            if ((P[std::size_t(f[std::size_t(k)])] - P[std::size_t(f[std::size_t((k + 1) % 3)])]).squaredNorm() > maxEdge * maxEdge)
+                return false;
         for (int k = 0; k < 3; ++k) {
             const std::int32_t a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
             mesh.trianglesAt(a, b, s.quadIds, s.edgeTris, s.edgeSides);
             s.wedge.clear();
-            for (std::size_t i = 0; i < s.edgeTris.size(); ++i) {
-                const Tri& g = s.edgeTris[i];
+            for (std::size_t j = 0; j < s.edgeTris.size(); ++j) {
+                const Tri& g = s.edgeTris[j];
                 int ia = 0;
                 while (g[std::size_t(ia)] != a) ++ia;
                 const bool aThenB = g[std::size_t((ia + 1) % 3)] == b;
                 const std::int32_t apex = g[std::size_t(aThenB ? (ia + 2) % 3 : (ia + 1) % 3)];
-                s.wedge.push_back({P[std::size_t(apex)], s.edgeSides[i][0], s.edgeSides[i][1], aThenB});
+                s.wedge.push_back({P[std::size_t(apex)], s.edgeSides[j][0], s.edgeSides[j][1], aThenB});
             }
             if (smallestRegionWedgeDeg(P[std::size_t(a)], P[std::size_t(b)], s.wedge.data(), s.wedge.size()) < minWedgeDeg)
                 return false;
@@ -284,8 +292,11 @@ void neighbourBlocks(const Mesh& mesh, const Block& b, std::vector<char>& mark) 
             }
 }
 
-/// Blocks at a self-intersecting or degenerate triangle of `triangles` (exact check).
-std::vector<std::int32_t> blocksAtIntersections(const std::vector<Tri>& triangles, const Mesh& mesh) {
+/// Blocks at a self-intersecting or degenerate triangle of `triangles` (exact check). Only pairs
+/// with a triangle not in `checked` (sorted: the triangles of the last check that were in no
+/// intersecting pair) are tested; `checked` becomes those of this check.
+std::vector<std::int32_t> blocksAtIntersections(const std::vector<Tri>& triangles, const Mesh& mesh,
+                                                std::vector<Tri>& checked) {
     SurfaceMesh surface;
     std::vector<std::int32_t> id(mesh.P.size(), -1);
     surface.triangles = triangles;
@@ -297,7 +308,21 @@ std::vector<std::int32_t> blocksAtIntersections(const std::vector<Tri>& triangle
             }
             c = id[std::size_t(c)];
         }
-    const SelfIntersectionReport report = findSelfIntersections(surface);
+    std::vector<char> isNew(triangles.size(), 1);
+    if (!checked.empty())
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 4096), [&](const auto& r) {
+            for (std::size_t t = r.begin(); t != r.end(); ++t)
+                isNew[t] = !std::binary_search(checked.begin(), checked.end(), triangles[t]);
+        });
+    const SelfIntersectionReport report = findSelfIntersections(surface, checked.empty() ? nullptr : &isNew);
+    // the triangles found in a pair stay unchecked: one may come back unchanged after the split
+    std::vector<char> found(triangles.size(), 0);
+    for (const auto& [a, b] : report.pairs) found[std::size_t(a)] = found[std::size_t(b)] = 1;
+    for (std::int32_t t : report.degenerate) found[std::size_t(t)] = 1;
+    checked.clear();
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        if (!found[t]) checked.push_back(triangles[t]);
+    tbb::parallel_sort(checked.begin(), checked.end());
     std::vector<std::int32_t> hit;
     const auto mark = [&](std::int32_t t) {
         for (std::int32_t c : triangles[std::size_t(t)])
@@ -388,7 +413,7 @@ std::vector<std::size_t> failingBlocks(Mesh& mesh, const std::vector<char>& dirt
             mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
             const bool nearTeeth = nearAcc.isValueOn(blockOf(k.lo, rule.top - k.level));
             const double bound = rule.options.bounds.boundMm(k.sides[0], k.sides[1], nearTeeth);
-            failed[i] = !fanShapeOk(mesh, s, rule.cosMinAngle, rule.options.minWedgeDeg) ||
+            failed[i] = !fanShapeOk(mesh, s, rule.cosMinAngle, rule.options.minWedgeDeg, rule.options.bounds) ||
                         !errorsWithin(k, mesh, s, rule.options.carriedFraction * bound, rule.options.sampleFraction * bound);
         }
     });
@@ -399,18 +424,25 @@ std::vector<std::size_t> failingBlocks(Mesh& mesh, const std::vector<char>& dirt
 }
 
 /// Splits the `split` blocks into their certified children (or back to fine cells when `toFine`);
-/// their children and the blocks around them are marked dirty.
+/// their children and the blocks around them are marked dirty. The children are chosen in
+/// parallel (they depend on the labels alone), then put in place in the order of `split`.
 void splitBlocks(Mesh& mesh, const std::vector<std::size_t>& split, bool toFine, const openvdb::Int32Grid& labels,
                  const std::vector<Coord>& cells, int ringVoxels, std::vector<char>& dirty) {
-    auto acc = labels.getConstAccessor();
-    for (std::size_t b : split) {
+    std::vector<std::vector<Block>> children(split.size());
+    if (!toFine)
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, split.size(), 16), [&](const auto& r) {
+            auto acc = labels.getConstAccessor();
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                const Block& b = mesh.blocks[split[i]];
+                chooseInChildren(acc, cells, b.lo, b.level, ringVoxels, b.members, children[i]);
+            }
+        });
+    for (std::size_t i = 0; i < split.size(); ++i) {
+        const std::size_t b = split[i];
         neighbourBlocks(mesh, mesh.blocks[b], dirty);
         mesh.release(b);
-        std::vector<Block> children;
-        if (!toFine)
-            chooseInChildren(acc, cells, mesh.blocks[b].lo, mesh.blocks[b].level, ringVoxels, mesh.blocks[b].members, children);
         mesh.blocks[b].members.clear();
-        for (Block& c : children) {
+        for (Block& c : children[i]) {
             mesh.blocks.push_back(std::move(c));
             mesh.assign(mesh.blocks.size() - 1);
         }
@@ -477,6 +509,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
                               : openvdb::BoolGrid::create(false);
     const CertifyRule rule{options, top, near->getConstAccessor(), std::cos(options.minAngleDeg * 3.14159265358979323846 / 180.0)};
     std::vector<char> dirty(mesh.blocks.size(), 1);
+    std::vector<Tri> checked;  // the triangles of the last intersection check, sorted
     // Certify what changed until every block passes; then the exact intersection check of the
     // whole surface, whose blocks go back to fine cells; until it is clean.
     for (int round = 0;; ++round) {
@@ -487,7 +520,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
         if (split.empty()) {
             emitQuadTriangles(quads, mesh.vertexOf, P, out.triangles, out.sides);
             if (mesh.blocks.empty()) break;
-            const std::vector<std::int32_t> hit = blocksAtIntersections(out.triangles, mesh);
+            const std::vector<std::int32_t> hit = blocksAtIntersections(out.triangles, mesh, checked);
             if (hit.empty()) break;
             split.assign(hit.begin(), hit.end());
             st.splitForIntersection += split.size();

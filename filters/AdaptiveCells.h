@@ -23,8 +23,8 @@
 // (filters/RegionWedges.h), shapes that would reach TetGen as slivers.
 // A block that fails is split into its eight children (tested again), and the blocks around it are
 // certified again (their triangles changed); a block at a self-intersecting or degenerate triangle of
-// the result (exact check of the whole surface once every block passes) goes back to fine cells;
-// until the surface is clean. Fine cells alone are the fine extraction, which is clean.
+// the result (exact check once every block passes: of the whole surface the first time, then of the
+// pairs with a triangle that changed) goes back to fine cells; until the surface is clean. Fine cells alone are the fine extraction, which is clean.
 #pragma once
 
 #include "filters/DualQuads.h"
@@ -53,7 +53,10 @@ struct AdaptiveOptions {
     double minAngleDeg = 5.0;
     double minWedgeDeg = 20.0;
     /// No other sheet and no third label within this many voxels of a block (thin plates, junctions).
-    int ringVoxels = 2;
+    /// 1 keeps plates of up to about two voxels and the voxels at junction curves fine. 2 also kept
+    /// both sheets of a 0.2 mm PDL at 0.05 mm voxels fine (shared mandible: 5.9 M triangles for the
+    /// simplification against 3.3 M); 0 left a tet the improver could not lift over 10 degrees.
+    int ringVoxels = 1;
 };
 
 struct AdaptiveStats {

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 
+
 namespace jawmesh {
 namespace {
 
@@ -62,8 +63,10 @@ openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOp
     const std::size_t maxFragmentVoxels = voxels(options.maxFragmentMm3);
     ExtractStats local;
     ExtractStats& st = stats ? *stats : local;
+    std::vector<Coord> relabelled;
     const auto absorb = [&] {
-        const SmallComponentStats f = absorbSmallComponents(*labels, maxPocketVoxels, maxFragmentVoxels);
+        relabelled.clear();
+        const SmallComponentStats f = absorbSmallComponents(*labels, maxPocketVoxels, maxFragmentVoxels, &relabelled);
         st.pocketsFilled += f.pockets;
         st.pocketVoxelsFilled += f.pocketVoxels;
         st.fragmentsAbsorbed += f.fragments;
@@ -74,11 +77,12 @@ openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOp
     if (options.repairDiagonalContacts) {
         // Repair first: a sheet one voxel thin on a diagonal is all fragments until joined. The
         // repair raises voxels to higher-priority regions, which can close pockets and cut off
-        // fragments, and absorbing can leave diagonal contacts: alternate until stable.
+        // fragments, and absorbing can leave diagonal contacts (only around what it relabelled):
+        // alternate until stable.
         makeLabelsWellComposed(*labels, field.distances, progress);
         for (int round = 0; absorbing && round < 4; ++round) {
             if (absorb() == 0) break;
-            if (makeLabelsWellComposed(*labels, field.distances, progress) == 0) break;
+            if (makeLabelsWellComposed(*labels, field.distances, progress, &relabelled) == 0) break;
         }
     } else {
         if (absorbing) absorb();

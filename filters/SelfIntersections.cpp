@@ -195,6 +195,7 @@ using PairList = std::vector<std::pair<std::int32_t, std::int32_t>>;
 /// What the collision callback needs: the mesh, and per thread the intersecting pairs found.
 struct CollideData {
     const SurfaceMesh* mesh;
+    const std::vector<char>* only;  ///< when set, pairs with neither triangle marked are skipped
     tbb::enumerable_thread_specific<PairList> hits;
 };
 
@@ -208,6 +209,7 @@ void collideFunc(void* userPtr, RTCCollision* collisions, unsigned int count) {
         auto a = std::int32_t(collisions[i].primID0), b = std::int32_t(collisions[i].primID1);
         if (a == b) continue;
         if (a > b) std::swap(a, b);
+        if (data.only && !(*data.only)[std::size_t(a)] && !(*data.only)[std::size_t(b)]) continue;
         const Tri& ta = mesh.triangles[std::size_t(a)];
         const Tri& tb = mesh.triangles[std::size_t(b)];
         const Vec3 pa[3] = {mesh.vertices[ta[0]], mesh.vertices[ta[1]], mesh.vertices[ta[2]]};
@@ -281,7 +283,7 @@ bool trianglesIntersect(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const T
     return false;
 }
 
-SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh) {
+SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh, const std::vector<char>* only) {
     SelfIntersectionReport report;
     const auto nv = std::int32_t(mesh.vertices.size());
     for (const Tri& t : mesh.triangles)
@@ -290,7 +292,9 @@ SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh) {
     const std::size_t nt = mesh.triangles.size();
     if (nt == 0) return report;
 
+    if (only && only->size() != nt) throw Error("self-intersection check: the triangle marks do not match the mesh");
     for (std::size_t i = 0; i < nt; ++i) {
+        if (only && !(*only)[i]) continue;
         const Tri& t = mesh.triangles[i];
         if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
             triangleDegenerate(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]))
@@ -312,7 +316,7 @@ SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh) {
     rtcReleaseGeometry(geom);
     rtcCommitScene(scene);
 
-    CollideData collide{&mesh, {}};
+    CollideData collide{&mesh, only, {}};
     rtcCollide(scene, scene, collideFunc, &collide);
     for (auto& local : collide.hits) report.pairs.insert(report.pairs.end(), local.begin(), local.end());
     std::sort(report.pairs.begin(), report.pairs.end());  // the same list whatever the threads

@@ -23,11 +23,13 @@ struct SelfIntersectionReport {
     bool clean() const { return pairs.empty() && degenerate.empty(); }
 };
 
-/// Finds all intersecting triangle pairs and all degenerate triangles of mesh.
+/// Finds all intersecting triangle pairs and all degenerate triangles of mesh; with `only` (one
+/// flag per triangle), only the pairs with a flagged triangle and the flagged degenerate ones (a
+/// surface changed in a few places since a clean check).
 /// Result does not depend on the thread count. Throws Error if an index is out of range.
 /// Cost: O(n log n) broad phase plus exact tests on the pairs whose boxes overlap; about a second
 /// per million triangles on a typical desktop (2 threads).
-SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh);
+SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh, const std::vector<char>* only = nullptr);
 
 /// Exact test for two triangles given by corner positions and vertex indices (indices decide what
 /// is shared: equal indices are the same point). True when they intersect other than at shared

@@ -359,14 +359,7 @@ private:
 
     PairRule ruleFor(Label a, Label b) const {
         const InterfaceBounds bounds = boundsOf(opt_);
-        const auto kind = [](Label l) { return l == kOutsideLabel ? LabelKind::Outside : labelKind(l); };
-        const LabelKind ka = kind(a), kb = kind(b);
-        const auto has = [&](LabelKind k) { return ka == k || kb == k; };
-        const double maxEdge = has(LabelKind::Pdl) && has(LabelKind::Outside) ? opt_.capMaxEdgeMm
-                               : has(LabelKind::Pdl)                          ? opt_.pdlMaxEdgeMm
-                               : has(LabelKind::Tooth)                        ? opt_.toothMaxEdgeMm
-                                                                              : opt_.boneMaxEdgeMm;
-        return {bounds.boundMm(a, b, true), maxEdge, bounds.boundMm(a, b, false)};
+        return {bounds.boundMm(a, b, true), bounds.maxEdgeMm(a, b), bounds.boundMm(a, b, false)};
     }
 
     std::uint64_t gkey(std::int32_t a, std::int32_t b) const { return edgeKey(gid_[std::size_t(a)], gid_[std::size_t(b)]); }
@@ -939,7 +932,8 @@ nlohmann::json toJson(const SimplifyOptions& o) {
 }
 
 InterfaceBounds boundsOf(const SimplifyOptions& o) {
-    return InterfaceBounds{o.toothErrorMm, o.pdlErrorMm, o.boneErrorMm, o.boneFarErrorMm};
+    return InterfaceBounds{o.toothErrorMm,  o.pdlErrorMm,   o.boneErrorMm,    o.boneFarErrorMm,
+                           o.pdlMaxEdgeMm, o.capMaxEdgeMm, o.toothMaxEdgeMm, o.boneMaxEdgeMm};
 }
 
 AdaptiveOptions matchedTo(const SimplifyOptions& options, AdaptiveOptions adaptive) {

@@ -1,5 +1,9 @@
 #include "filters/SmallComponents.h"
 
+#include "filters/LabelEdges.h"
+
+#include <tbb/parallel_sort.h>
+
 #include <map>
 #include <set>
 #include <vector>
@@ -20,23 +24,23 @@ struct SmallComponent {
 }  // namespace
 
 SmallComponentStats absorbSmallComponents(openvdb::Int32Grid& labels, std::size_t maxOutsideVoxels,
-                                          std::size_t maxRegionVoxels) {
+                                          std::size_t maxRegionVoxels, std::vector<Coord>* relabelled) {
     // Voxels next to another label: every small component has one. Sorted, so components are
-    // found in the same order whatever the tree's layout.
+    // found in the same order whatever the tree's layout. The label edges find them in parallel
+    // and skip the inside of leaves that hold one label (a serial scan of every leaf voxel with
+    // its six neighbours took about a tenth of the extraction on the shared mandible).
     std::vector<Coord> starts;
     {
-        auto acc = labels.getConstAccessor();
-        for (auto leaf = labels.tree().cbeginLeaf(); leaf; ++leaf)
-            for (auto it = leaf->cbeginValueAll(); it; ++it) {
-                const Coord c = it.getCoord();
-                for (const Coord& d : kFace)
-                    if (acc.getValue(c + d) != *it) {
-                        starts.push_back(c);
-                        starts.push_back(c + d);  // may lie outside every leaf (background)
-                    }
-            }
+        const std::vector<LabelEdge> edges = findLabelEdges(labels, {});
+        starts.reserve(2 * edges.size());
+        for (const LabelEdge& e : edges) {
+            Coord across = e.voxel;
+            across[e.axis] += 1;
+            starts.push_back(e.voxel);
+            starts.push_back(across);
+        }
     }
-    std::sort(starts.begin(), starts.end());
+    tbb::parallel_sort(starts.begin(), starts.end());
     starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
 
     // 1 = in a component larger than its limit, 2 = in a small one, 3 = in the current flood.
@@ -101,6 +105,7 @@ SmallComponentStats absorbSmallComponents(openvdb::Int32Grid& labels, std::size_
         const auto k = keep.find(s.label);
         if (k != keep.end() && k->second == i) continue;
         for (const Coord& c : s.voxels) write.setValueOn(c, s.fill);
+        if (relabelled) relabelled->insert(relabelled->end(), s.voxels.begin(), s.voxels.end());
         if (s.label == kOutsideLabel) {
             ++stats.pockets;
             stats.pocketVoxels += s.voxels.size();

@@ -15,6 +15,7 @@
 #include <openvdb/openvdb.h>
 
 #include <cstddef>
+#include <vector>
 
 namespace jawmesh {
 
@@ -32,8 +33,10 @@ struct SmallComponentStats {
 /// its largest component even when all are small, so no region disappears. Larger enclosed
 /// cavities (a canal) are kept. Labels are read before any is changed, so the result does not
 /// depend on the visiting order. Deterministic.
+/// The voxels it relabels are appended to `relabelled` when given.
 /// Cost: a flood fill bounded by the limit from every voxel next to another label.
 SmallComponentStats absorbSmallComponents(openvdb::Int32Grid& labels, std::size_t maxOutsideVoxels,
-                                          std::size_t maxRegionVoxels);
+                                          std::size_t maxRegionVoxels,
+                                          std::vector<openvdb::Coord>* relabelled = nullptr);
 
 }  // namespace jawmesh

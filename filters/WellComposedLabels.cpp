@@ -131,12 +131,12 @@ bool fixCell(const std::array<Label, 8>& lab, const std::array<openvdb::Coord, 8
     return false;
 }
 
-/// The dual cells that have a fixed voxel as a corner, sorted.
-std::vector<openvdb::Coord> cellsAround(const std::vector<Fix>& fixes) {
+/// The dual cells that have one of `voxels` as a corner, sorted.
+std::vector<openvdb::Coord> cellsAround(const std::vector<openvdb::Coord>& voxels) {
     std::vector<openvdb::Coord> cells;
-    cells.reserve(8 * fixes.size());
-    for (const Fix& f : fixes)
-        for (int k = 0; k < 8; ++k) cells.push_back(f.voxel - openvdb::Coord(k & 1, (k >> 1) & 1, k >> 2));
+    cells.reserve(8 * voxels.size());
+    for (const openvdb::Coord& v : voxels)
+        for (int k = 0; k < 8; ++k) cells.push_back(v - openvdb::Coord(k & 1, (k >> 1) & 1, k >> 2));
     std::sort(cells.begin(), cells.end());
     cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
     return cells;
@@ -190,16 +190,20 @@ int labelConnectPriority(Label label) {
 
 std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
                                    const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
-                                   Progress& progress) {
+                                   Progress& progress, const std::vector<openvdb::Coord>* changedVoxels) {
     std::size_t relabelled = 0;
     // After the first sweep only the cells around what it changed are looked at again: a cell
     // none of whose corners changed is as it was, and every critical cell changed a corner.
-    std::vector<openvdb::Coord> cells = dualCellsOf(findLabelEdges(labels, distances));
+    std::vector<openvdb::Coord> cells =
+        changedVoxels ? cellsAround(*changedVoxels) : dualCellsOf(findLabelEdges(labels, distances));
+    std::vector<openvdb::Coord> fixed;
     for (int sweep = 0; sweep < 256; ++sweep) {
         progress.checkCancelled();
         const auto fixes = proposeFixes(labels, distances, cells, progress);
         if (fixes.empty()) return relabelled;
-        cells = cellsAround(fixes);
+        fixed.clear();
+        for (const Fix& f : fixes) fixed.push_back(f.voxel);
+        cells = cellsAround(fixed);
         auto acc = labels.getAccessor();
         for (const Fix& f : fixes) acc.setValue(f.voxel, f.to);
         relabelled += fixes.size();

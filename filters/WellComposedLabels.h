@@ -21,6 +21,7 @@
 #include <openvdb/openvdb.h>
 
 #include <map>
+#include <vector>
 
 namespace jawmesh {
 
@@ -31,10 +32,14 @@ int labelConnectPriority(Label label);
 /// voxels relabelled. `distances` (may be empty) breaks ties between candidate voxels.
 /// Throws Error if the repair does not converge within 256 sweeps (not seen in the tests, random
 /// labels included).
-/// Cost per sweep: one findLabelEdges plus O(dual cells); usually 1-3 sweeps.
+/// With `changedVoxels`, the labels were well-composed before those voxels changed, so only the
+/// dual cells around them are looked at.
+/// Cost: one findLabelEdges (none with changedVoxels), then O(cells looked at) per sweep; usually
+/// 1-3 sweeps.
 std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
                                    const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
-                                   Progress& progress = noProgress());
+                                   Progress& progress = noProgress(),
+                                   const std::vector<openvdb::Coord>* changedVoxels = nullptr);
 
 /// Number of voxels one repair sweep would relabel (0 when every region is well-composed).
 std::size_t countCriticalCells(const openvdb::Int32Grid& labels,

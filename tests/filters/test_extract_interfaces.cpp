@@ -257,6 +257,23 @@ TEST(ExtractInterfaces, EdgeAndCornerContactsOfOneRegion) {
     expectValidComplex(c, f);
 }
 
+// After a change to a well-composed grid, looking only around the changed voxels repairs it.
+TEST(WellComposedLabels, RepairAroundChangedVoxelsOnly) {
+    const int n = 16;
+    std::vector<Label> lab(std::size_t(n * n * n), kOutsideLabel);
+    for (int z = 2; z < 14; ++z)
+        for (int y = 2; y < 14; ++y)
+            for (int x = 2; x < 8; ++x) lab[std::size_t((z * n + y) * n + x)] = kMandibleBoneLabel;
+    const LabelField f = test::rawField(lab, n, n, n, 0.05);
+    ASSERT_EQ(countCriticalCells(*f.labels, f.distances), 0u);
+    // a bone voxel touching the block along an edge only (bone at (7, 2, 8)): a diagonal contact
+    f.labels->tree().setValueOn(openvdb::Coord(8, 1, 8), kMandibleBoneLabel);
+    ASSERT_GT(countCriticalCells(*f.labels, f.distances), 0u);
+    const std::vector<openvdb::Coord> voxels = {openvdb::Coord(8, 1, 8)};
+    EXPECT_GT(makeLabelsWellComposed(*f.labels, f.distances, noProgress(), &voxels), 0u);
+    EXPECT_EQ(countCriticalCells(*f.labels, f.distances), 0u);
+}
+
 TEST(ExtractInterfaces, LabelChangesBetweenTilesAreClosed) {
     // tiles in the label tree, no distance band over them (see support/TiledSlabField.h)
     const LabelField f = test::tiledSlabField();

@@ -1,5 +1,6 @@
 // Exact self-intersection check: configurations decided exactly, speed on a million triangles.
 #include "filters/SelfIntersections.h"
+#include "io/Error.h"
 
 #include <gtest/gtest.h>
 
@@ -88,6 +89,30 @@ TEST(SelfIntersections, CleanSphereAndDentedSphere) {
         EXPECT_FALSE(trianglesIntersect(d, {0, 0, 1}, p, f));
         EXPECT_FALSE(trianglesIntersect(p, f, d, {0, 0, 1}));
     }
+}
+
+// With flags, only pairs that have a flagged triangle are tested (a surface changed in places).
+TEST(SelfIntersections, OnlyPairsWithAFlaggedTriangle) {
+    SurfaceMesh s = uvSphere(64, 32, 1.0);
+    const std::int32_t pushed = 1 + 10 * 64 + 5;
+    s.vertices[std::size_t(pushed)] *= -1.2;
+    const auto all = findSelfIntersections(s);
+    ASSERT_FALSE(all.pairs.empty());
+    std::vector<char> atPushed(s.triangles.size(), 0), elsewhere(s.triangles.size(), 0);
+    std::vector<char> flagged = atPushed;
+    for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+        const Tri& f = s.triangles[t];
+        const bool at = f[0] == pushed || f[1] == pushed || f[2] == pushed;
+        atPushed[t] = at;
+        bool inPair = false;
+        for (const auto& [a, b] : all.pairs) inPair = inPair || a == std::int32_t(t) || b == std::int32_t(t);
+        elsewhere[t] = !inPair;
+    }
+    // every intersecting pair has a triangle at the pushed vertex: flagging those finds them all
+    EXPECT_EQ(findSelfIntersections(s, &atPushed).pairs, all.pairs);
+    EXPECT_TRUE(findSelfIntersections(s, &elsewhere).pairs.empty());
+    std::vector<char> wrongSize(3, 1);
+    EXPECT_THROW(findSelfIntersections(s, &wrongSize), Error);
 }
 
 // A dense closed surface (many near-coplanar neighbours) is clean; speed is a bench/ matter.

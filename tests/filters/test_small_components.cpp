@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 namespace jawmesh {
 namespace {
 
@@ -53,8 +56,13 @@ TEST(SmallComponents, RegionFragmentsGoToTheirSurroundingsButNoRegionVanishes) {
     g.tree().setValueOn(Coord(25, 25, 25), 131);                               // a region of one voxel only
     fillBox(g, CoordBBox(Coord(15, 15, 15), Coord(15, 15, 15)), 130);          // (inside the tooth: no change)
 
-    const SmallComponentStats st = absorbSmallComponents(g, 0, 8);
+    std::vector<Coord> relabelled;
+    const SmallComponentStats st = absorbSmallComponents(g, 0, 8, &relabelled);
     EXPECT_EQ(st.fragments, 3u);
+    std::sort(relabelled.begin(), relabelled.end());
+    const std::vector<Coord> expected = {Coord(3, 3, 3),  Coord(11, 11, 11), Coord(11, 12, 11), Coord(29, 0, 0),
+                                         Coord(29, 1, 0), Coord(30, 0, 0),   Coord(30, 1, 0)};
+    EXPECT_EQ(relabelled, expected);
     EXPECT_EQ(st.fragmentVoxels, 1u + 2u + 4u);
     EXPECT_EQ(st.pockets, 0u);
     auto acc = g.getConstAccessor();
