@@ -4,7 +4,7 @@
 // (e.g. the shared mandible) without repeating extraction and simplification. A TetGen .poly (the
 // surface a failed run keeps in failed_surface/) is read as it is, with its own seeds.
 // Usage: bench_retet <mesh.msh | surface.poly> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
-// max (edge mm), O (optimisation level), repair (attempts), improve (0/1), Y (0: TetGen may split interface triangles),
+// max (edge mm), O (optimisation level), repair (attempts), improve (0/1), check (0: no intersection check first), Y (0: TetGen may split interface triangles),
 // refine (rounds of local refinement, tet/RefineComplex.h), holes (1: only fill the surface's holes and list them).
 // BENCH_WRITE=<file.msh> writes the mesh.
 #include "filters/FillSurfaceHoles.h"
@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
         else if (k == "O") o.optimizationLevel = int(v);
         else if (k == "repair") o.repairAttempts = int(v);
         else if (k == "improve") o.improveSlivers = v != 0;
+        else if (k == "check") o.checkIntersections = v != 0;
         else if (k == "Y") o.preserveBoundary = v != 0;
         else if (k == "refine") o.refineRounds = int(v);
         else if (k == "holes") holesOnly = v != 0;

@@ -31,8 +31,9 @@ struct TetOptions {
     /// kept off so the output surface is exactly the input triangles.
     bool mergeCoplanarFacets = false;
     int optimizationLevel = 3;      ///< TetGen -O level (0..9), all local operations (scheme 7)
-    /// Run TetGen's intersection diagnosis (-d) first: TetGen 1.5.0 crashes instead of throwing
-    /// on intersecting facets, so turning this off is only safe for input known to be clean.
+    /// Check the surface for intersecting and degenerate triangles first (exactly): TetGen 1.5.0
+    /// crashes instead of throwing on intersecting facets, so turning this off is only safe for
+    /// input known to be clean.
     bool checkIntersections = true;
     int repairAttempts = 2;         ///< extra runs with stronger optimisation when min dihedral is low
     /// After TetGen, raise tets below minDihedralDeg by smoothing, flips and splits inside the
