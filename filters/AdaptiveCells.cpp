@@ -202,36 +202,57 @@ struct Scratch {
     std::vector<Tri> fan, edgeTris;
     std::vector<std::array<Label, 2>> fanSides, edgeSides;
     std::vector<EdgeFanTriangle> wedge;
+    std::vector<std::pair<std::int32_t, std::int32_t>> edges;
 };
 
-/// No triangle at the block's vertex has an angle under the minimum or an edge longer than its
+/// The wedge of every region at edge a-b, from the triangles `tris` (sides `sides`) that have both.
+double edgeWedgeDeg(const std::vector<Vec3>& P, std::int32_t a, std::int32_t b, const std::vector<Tri>& tris,
+                    const std::vector<std::array<Label, 2>>& sides, std::vector<EdgeFanTriangle>& wedge) {
+    wedge.clear();
+    for (std::size_t j = 0; j < tris.size(); ++j) {
+        const Tri& g = tris[j];
+        int ia = 0, ib = 0;
+        for (int k = 0; k < 3; ++k) {
+            if (g[std::size_t(k)] == a) ia = k + 1;
+            if (g[std::size_t(k)] == b) ib = k + 1;
+        }
+        if (!ia || !ib) continue;
+        const bool aThenB = ib - 1 == ia % 3;
+        wedge.push_back({P[std::size_t(g[std::size_t(3 - (ia - 1) - (ib - 1))])], sides[j][0], sides[j][1], aThenB});
+    }
+    return smallestRegionWedgeDeg(P[std::size_t(a)], P[std::size_t(b)], wedge.data(), wedge.size());
+}
+
+/// No triangle at the block's vertex x has an angle under the minimum or an edge longer than its
 /// interface allows (the simplification only bounds the edges it makes), and no region spans a
-/// wedge under the minimum at their edges: the simplification could not always remove such shapes, and
-/// TetGen under -Y must keep them (slivers).
-bool fanShapeOk(const Mesh& mesh, Scratch& s, double cosMinAngle, double minWedgeDeg, const InterfaceBounds& bounds) {
+/// wedge under the minimum at their edges: the simplification could not always remove such shapes,
+/// and TetGen under -Y must keep them (slivers). The triangles at a spoke x-y are the fan's own;
+/// those at a rim edge are looked up. Each edge is measured once.
+bool fanShapeOk(const Mesh& mesh, std::int32_t x, Scratch& s, double cosMinAngle, double minWedgeDeg,
+                const InterfaceBounds& bounds) {
     const auto& P = mesh.P;
+    s.edges.clear();
     for (std::size_t i = 0; i < s.fan.size(); ++i) {
         const Tri& f = s.fan[i];
         if (smallestAngleCosine(P[std::size_t(f[0])], P[std::size_t(f[1])], P[std::size_t(f[2])]) > cosMinAngle) return false;
         const double maxEdge = bounds.maxEdgeMm(s.fanSides[i][0], s.fanSides[i][1]);
-        for (int k = 0; k < 3; ++k)
-            if ((P[std::size_t(f[std::size_t(k)])] - P[std::size_t(f[std::size_t((k + 1) % 3)])]).squaredNorm() > maxEdge * maxEdge)
-                return false;
         for (int k = 0; k < 3; ++k) {
             const std::int32_t a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
-            mesh.trianglesAt(a, b, s.quadIds, s.edgeTris, s.edgeSides);
-            s.wedge.clear();
-            for (std::size_t j = 0; j < s.edgeTris.size(); ++j) {
-                const Tri& g = s.edgeTris[j];
-                int ia = 0;
-                while (g[std::size_t(ia)] != a) ++ia;
-                const bool aThenB = g[std::size_t((ia + 1) % 3)] == b;
-                const std::int32_t apex = g[std::size_t(aThenB ? (ia + 2) % 3 : (ia + 1) % 3)];
-                s.wedge.push_back({P[std::size_t(apex)], s.edgeSides[j][0], s.edgeSides[j][1], aThenB});
-            }
-            if (smallestRegionWedgeDeg(P[std::size_t(a)], P[std::size_t(b)], s.wedge.data(), s.wedge.size()) < minWedgeDeg)
-                return false;
+            if ((P[std::size_t(a)] - P[std::size_t(b)]).squaredNorm() > maxEdge * maxEdge) return false;
+            s.edges.push_back({std::min(a, b), std::max(a, b)});
         }
+    }
+    std::sort(s.edges.begin(), s.edges.end());
+    s.edges.erase(std::unique(s.edges.begin(), s.edges.end()), s.edges.end());
+    for (const auto& [a, b] : s.edges) {
+        double wedge;
+        if (a == x || b == x) {
+            wedge = edgeWedgeDeg(P, a, b, s.fan, s.fanSides, s.wedge);
+        } else {
+            mesh.trianglesAt(a, b, s.quadIds, s.edgeTris, s.edgeSides);
+            wedge = edgeWedgeDeg(P, a, b, s.edgeTris, s.edgeSides, s.wedge);
+        }
+        if (wedge < minWedgeDeg) return false;
     }
     return true;
 }
@@ -413,7 +434,7 @@ std::vector<std::size_t> failingBlocks(Mesh& mesh, const std::vector<char>& dirt
             mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
             const bool nearTeeth = nearAcc.isValueOn(blockOf(k.lo, rule.top - k.level));
             const double bound = rule.options.bounds.boundMm(k.sides[0], k.sides[1], nearTeeth);
-            failed[i] = !fanShapeOk(mesh, s, rule.cosMinAngle, rule.options.minWedgeDeg, rule.options.bounds) ||
+            failed[i] = !fanShapeOk(mesh, k.vertex, s, rule.cosMinAngle, rule.options.minWedgeDeg, rule.options.bounds) ||
                         !errorsWithin(k, mesh, s, rule.options.carriedFraction * bound, rule.options.sampleFraction * bound);
         }
     });
