@@ -378,7 +378,7 @@ std::vector<Block> initialBlocks(const openvdb::Int32Grid& labels, const std::ve
                                  int ringVoxels) {
     std::vector<std::pair<Coord, std::int32_t>> byBlock(cells.size());
     for (std::size_t c = 0; c < cells.size(); ++c) byBlock[c] = {blockOf(cells[c], top), std::int32_t(c)};
-    std::stable_sort(byBlock.begin(), byBlock.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    tbb::parallel_sort(byBlock.begin(), byBlock.end());  // by block, then cell: the cells' order within a block
     std::vector<std::size_t> groupStart;
     for (std::size_t i = 0; i < byBlock.size(); ++i)
         if (i == 0 || byBlock[i].first != byBlock[i - 1].first) groupStart.push_back(i);

@@ -283,24 +283,11 @@ bool trianglesIntersect(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const T
     return false;
 }
 
-SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh, const std::vector<char>* only) {
-    SelfIntersectionReport report;
-    const auto nv = std::int32_t(mesh.vertices.size());
-    for (const Tri& t : mesh.triangles)
-        for (int k = 0; k < 3; ++k)
-            if (t[k] < 0 || t[k] >= nv) throw Error("self-intersection check: vertex index out of range");
-    const std::size_t nt = mesh.triangles.size();
-    if (nt == 0) return report;
+namespace {
 
-    if (only && only->size() != nt) throw Error("self-intersection check: the triangle marks do not match the mesh");
-    for (std::size_t i = 0; i < nt; ++i) {
-        if (only && !(*only)[i]) continue;
-        const Tri& t = mesh.triangles[i];
-        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
-            triangleDegenerate(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]))
-            report.degenerate.push_back(std::int32_t(i));
-    }
-
+/// The intersecting pairs among all triangles of `mesh` (with `only`: pairs with a flagged one),
+/// unsorted: Embree's collision of the triangles' boxes, each candidate tested exactly.
+PairList collidingPairs(const SurfaceMesh& mesh, const std::vector<char>* only) {
     RTCDevice device = rtcNewDevice(nullptr);
     if (!device) throw Error("self-intersection check: cannot create an Embree device");
     std::unique_ptr<RTCDeviceTy, void (*)(RTCDevice)> deviceGuard(device, rtcReleaseDevice);
@@ -308,7 +295,7 @@ SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh, const std:
     std::unique_ptr<RTCSceneTy, void (*)(RTCScene)> sceneGuard(scene, rtcReleaseScene);
     BoxData data{&mesh};
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(geom, unsigned(nt));
+    rtcSetGeometryUserPrimitiveCount(geom, unsigned(mesh.triangles.size()));
     rtcSetGeometryUserData(geom, &data);
     rtcSetGeometryBoundsFunction(geom, boundsFunc, nullptr);
     rtcCommitGeometry(geom);
@@ -318,7 +305,111 @@ SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh, const std:
 
     CollideData collide{&mesh, only, {}};
     rtcCollide(scene, scene, collideFunc, &collide);
-    for (auto& local : collide.hits) report.pairs.insert(report.pairs.end(), local.begin(), local.end());
+    PairList pairs;
+    for (auto& local : collide.hits) pairs.insert(pairs.end(), local.begin(), local.end());
+    return pairs;
+}
+
+BBox triangleBox(const SurfaceMesh& mesh, std::size_t t) {
+    BBox b;
+    for (std::int32_t v : mesh.triangles[t]) b.extend(mesh.vertices[std::size_t(v)]);
+    return b;
+}
+
+/// The flagged triangles and every triangle whose box may meet one of theirs (a hash of grid
+/// cells as large as the largest flagged box, so each flagged box covers at most 8): a few
+/// flagged triangles then need no collision structure over the whole surface. Ascending.
+std::vector<std::int32_t> aroundFlagged(const SurfaceMesh& mesh, const std::vector<char>& only) {
+    const std::size_t nt = mesh.triangles.size();
+    double cellMm = 0;
+    for (std::size_t t = 0; t < nt; ++t)
+        if (only[t]) cellMm = std::max(cellMm, triangleBox(mesh, t).size().maxCoeff());
+    cellMm = std::max(cellMm, 1e-9) * 1.01;
+    const auto cellRange = [&](const BBox& b, Eigen::Vector3i& lo, Eigen::Vector3i& hi) {
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = int(std::floor(b.min[a] / cellMm)) - 1;  // a cell of slack for the float padding
+            hi[a] = int(std::floor(b.max[a] / cellMm)) + 1;
+        }
+    };
+    const auto key = [](int x, int y, int z) {
+        return (std::uint64_t(std::uint32_t(x) & 0x1fffff) << 42) | (std::uint64_t(std::uint32_t(y) & 0x1fffff) << 21) |
+               std::uint64_t(std::uint32_t(z) & 0x1fffff);
+    };
+    std::vector<std::uint64_t> cells;
+    for (std::size_t t = 0; t < nt; ++t) {
+        if (!only[t]) continue;
+        Eigen::Vector3i lo, hi;
+        cellRange(triangleBox(mesh, t), lo, hi);
+        for (int x = lo[0]; x <= hi[0]; ++x)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int z = lo[2]; z <= hi[2]; ++z) cells.push_back(key(x, y, z));
+    }
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    std::vector<char> keep(nt, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const auto& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            if (only[t]) {
+                keep[t] = 1;
+                continue;
+            }
+            const BBox b = triangleBox(mesh, t);
+            Eigen::Vector3i lo, hi;
+            cellRange(b, lo, hi);
+            // the box's own cells, shrunk back by the slack (a flagged cell within one is enough);
+            // a box across many cells is simply kept
+            if ((hi - lo).maxCoeff() > 10) {
+                keep[t] = 1;
+                continue;
+            }
+            for (int x = lo[0] + 1; x < hi[0] && !keep[t]; ++x)
+                for (int y = lo[1] + 1; y < hi[1] && !keep[t]; ++y)
+                    for (int z = lo[2] + 1; z < hi[2] && !keep[t]; ++z)
+                        keep[t] = std::binary_search(cells.begin(), cells.end(), key(x, y, z));
+        }
+    });
+    std::vector<std::int32_t> out;
+    for (std::size_t t = 0; t < nt; ++t)
+        if (keep[t]) out.push_back(std::int32_t(t));
+    return out;
+}
+
+}  // namespace
+
+SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh, const std::vector<char>* only) {
+    SelfIntersectionReport report;
+    const auto nv = std::int32_t(mesh.vertices.size());
+    for (const Tri& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k)
+            if (t[k] < 0 || t[k] >= nv) throw Error("self-intersection check: vertex index out of range");
+    const std::size_t nt = mesh.triangles.size();
+    if (nt == 0) return report;
+    if (only && only->size() != nt) throw Error("self-intersection check: the triangle marks do not match the mesh");
+    for (std::size_t i = 0; i < nt; ++i) {
+        if (only && !(*only)[i]) continue;
+        const Tri& t = mesh.triangles[i];
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+            triangleDegenerate(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]))
+            report.degenerate.push_back(std::int32_t(i));
+    }
+    if (!only) {
+        report.pairs = collidingPairs(mesh, nullptr);
+    } else {
+        // Only the flagged triangles and those near them take part (ids mapped back after).
+        const std::vector<std::int32_t> part = aroundFlagged(mesh, *only);
+        SurfaceMesh sub;
+        sub.vertices = mesh.vertices;
+        std::vector<char> subOnly(part.size());
+        for (std::size_t i = 0; i < part.size(); ++i) {
+            sub.triangles.push_back(mesh.triangles[std::size_t(part[i])]);
+            subOnly[i] = (*only)[std::size_t(part[i])];
+        }
+        report.pairs = collidingPairs(sub, &subOnly);
+        for (auto& [a, b] : report.pairs) {
+            a = part[std::size_t(a)];
+            b = part[std::size_t(b)];
+        }
+    }
     std::sort(report.pairs.begin(), report.pairs.end());  // the same list whatever the threads
     report.pairs.erase(std::unique(report.pairs.begin(), report.pairs.end()), report.pairs.end());
     return report;

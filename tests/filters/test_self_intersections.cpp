@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <random>
 
 namespace jawmesh {
 namespace {
@@ -111,6 +112,18 @@ TEST(SelfIntersections, OnlyPairsWithAFlaggedTriangle) {
     // every intersecting pair has a triangle at the pushed vertex: flagging those finds them all
     EXPECT_EQ(findSelfIntersections(s, &atPushed).pairs, all.pairs);
     EXPECT_TRUE(findSelfIntersections(s, &elsewhere).pairs.empty());
+    // any flags: exactly the pairs of the whole check that have a flagged triangle
+    std::mt19937 random(7);
+    for (int round = 0; round < 5; ++round) {
+        std::vector<char> some(s.triangles.size(), 0);
+        for (char& f : some) f = random() % 10 == 0;
+        for (const auto& [a, b] : all.pairs)
+            if (random() % 3 == 0) some[std::size_t(a)] = 1;  // some pairs in, some half in, some out
+        std::vector<std::pair<std::int32_t, std::int32_t>> expected;
+        for (const auto& p : all.pairs)
+            if (some[std::size_t(p.first)] || some[std::size_t(p.second)]) expected.push_back(p);
+        EXPECT_EQ(findSelfIntersections(s, &some).pairs, expected);
+    }
     std::vector<char> wrongSize(3, 1);
     EXPECT_THROW(findSelfIntersections(s, &wrongSize), Error);
 }
