@@ -34,7 +34,9 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
     // Accept the jaw folder of `jawmesh carve` / `run --write-levelsets` or its levelsets/ folder.
     std::string dir = opt.carveDir;
     if (std::filesystem::exists(dir + "/levelsets/labels.vdb")) dir += "/levelsets";
-    const LabelField field = readLabelField(dir);
+    LabelField field = readLabelField(dir);
+    const double voxelMm = field.voxelSizeMm;
+    const Jaw jawOfField = field.jaw;
     const double secondsRead = secondsSince(start);
 
     const auto tExtract = std::chrono::steady_clock::now();
@@ -42,19 +44,19 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
     extract.findSeeds = !opt.simplifyOn;  // simplification places them on its output
     extract.adaptive = matchedTo(opt.simplify, extract.adaptive);
     ExtractStats extractStats;
-    InterfaceComplex complex = extractInterfaces(field, extract, progress, &extractStats);
+    InterfaceComplex complex = extractInterfaces(std::move(field), extract, progress, &extractStats);
     const double secondsExtract = secondsSince(tExtract);
     SimplifyStats stats;
     if (opt.simplifyOn) complex = simplifyInterfaces(complex, opt.simplify, progress, &stats);
     else complex = withoutCarried(std::move(complex));
 
-    const std::string jaw = jawName(field.jaw);
+    const std::string jaw = jawName(jawOfField);
     StagedFolder staged(opt.output);
     writeTetgenPoly(complex, staged.path() + "/" + jaw + ".poly");
     writeRegionBoundaries(complex, staged.path() + "/regions", "ply");
     nlohmann::json j = {{"input", opt.carveDir},
                         {"jaw", jaw},
-                        {"voxel_mm", field.voxelSizeMm},
+                        {"voxel_mm", voxelMm},
                         {"triangles", complex.surface.triangles.size()},
                         {"vertices", complex.surface.vertices.size()},
                         {"seeds", complex.seeds.size()},

@@ -165,9 +165,9 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
             ExtractOptions extract = options.extract;
             extract.findSeeds = false;  // simplification places them on its output
             extract.adaptive = matchedTo(options.simplify, extract.adaptive);
-            return extractInterfaces(field, extract, progress, &extractStats);
+            return extractInterfaces(std::move(field), extract, progress, &extractStats);
         });
-    field = LabelField{};  // the grids are no longer needed; free them before TetGen
+    field = LabelField{};  // extraction consumed the grids
     SimplifyStats simplifyStats;
     complex = log.run(jaw + ": simplify surface", progress,
                       [&] { return simplifyInterfaces(complex, options.simplify, progress, &simplifyStats); });

@@ -53,11 +53,12 @@ constexpr int kCellEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3
 
 }  // namespace
 
-openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOptions& options, Progress& progress,
-                                        ExtractStats* stats) {
-    if (!field.labels) throw Error("interface extraction: the label field has no label grid");
-    openvdb::Int32Grid::Ptr labels = field.labels->deepCopy();
-    const double voxelMm = labels->voxelSize()[0];
+namespace {
+
+/// Repairs and absorbs in `labels` (field.labels or a copy of it) as labelsToExtract describes.
+void prepareLabels(openvdb::Int32Grid& labels, const LabelField& field, const ExtractOptions& options,
+                   Progress& progress, ExtractStats* stats) {
+    const double voxelMm = labels.voxelSize()[0];
     const auto voxels = [&](double mm3) { return std::size_t(std::max(0.0, mm3) / (voxelMm * voxelMm * voxelMm)); };
     const std::size_t maxPocketVoxels = voxels(options.maxEnclosedOutsideMm3);
     const std::size_t maxFragmentVoxels = voxels(options.maxFragmentMm3);
@@ -66,7 +67,7 @@ openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOp
     std::vector<Coord> relabelled;
     const auto absorb = [&] {
         relabelled.clear();
-        const SmallComponentStats f = absorbSmallComponents(*labels, maxPocketVoxels, maxFragmentVoxels, &relabelled);
+        const SmallComponentStats f = absorbSmallComponents(labels, maxPocketVoxels, maxFragmentVoxels, &relabelled);
         st.pocketsFilled += f.pockets;
         st.pocketVoxelsFilled += f.pocketVoxels;
         st.fragmentsAbsorbed += f.fragments;
@@ -79,27 +80,44 @@ openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOp
         // repair raises voxels to higher-priority regions, which can close pockets and cut off
         // fragments, and absorbing can leave diagonal contacts (only around what it relabelled):
         // alternate until stable.
-        makeLabelsWellComposed(*labels, field.distances, progress);
+        makeLabelsWellComposed(labels, field.distances, progress);
         for (int round = 0; absorbing && round < 4; ++round) {
             if (absorb() == 0) break;
-            if (makeLabelsWellComposed(*labels, field.distances, progress, &relabelled) == 0) break;
+            if (makeLabelsWellComposed(labels, field.distances, progress, &relabelled) == 0) break;
         }
     } else {
         if (absorbing) absorb();
-        if (countCriticalCells(*labels, field.distances) > 0)
+        if (countCriticalCells(labels, field.distances) > 0)
             throw Error("interface extraction: the label field has diagonal-only contacts");
     }
+}
+
+}  // namespace
+
+openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOptions& options, Progress& progress,
+                                        ExtractStats* stats) {
+    if (!field.labels) throw Error("interface extraction: the label field has no label grid");
+    openvdb::Int32Grid::Ptr labels = field.labels->deepCopy();
+    prepareLabels(*labels, field, options, progress, stats);
     return labels;
 }
 
-InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions& options,
-                                   Progress& progress, ExtractStats* stats) {
+InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions& options, Progress& progress,
+                                   ExtractStats* stats) {
+    return extractInterfaces(LabelField(field), options, progress, stats);  // shares the grids: they are copied
+}
+
+InterfaceComplex extractInterfaces(LabelField&& field, const ExtractOptions& options, Progress& progress,
+                                   ExtractStats* stats) {
     if (!field.labels) throw Error("interface extraction: the label field has no label grid");
     if (!field.labels->transform().isLinear())
         throw Error("interface extraction: the label grid's transform is not linear");
     ProgressStage stage(progress, "interface extraction");
 
-    openvdb::Int32Grid::Ptr labels = labelsToExtract(field, options, progress, stats);
+    // Prepared in place when nothing else holds the grid (a copy is ~0.3 GB on the mandible).
+    openvdb::Int32Grid::Ptr labels = field.labels.use_count() == 1 ? field.labels : field.labels->deepCopy();
+    field.labels.reset();
+    prepareLabels(*labels, field, options, progress, stats);
     stage.update(0.3);
 
     std::vector<LabelEdge> edges = findLabelEdges(*labels, field.distances);
@@ -137,6 +155,8 @@ InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions
         }
     });
     stage.update(0.6);
+    // The distances placed the vertices; only the seeds need them again.
+    if (!options.findSeeds) field.distances.clear();
 
     const std::vector<DualQuad> quads = dualQuadsOf(edges, cells, *labels, mirrored);
     std::vector<LabelEdge>().swap(edges);  // 16 bytes per quad, not needed from here on

@@ -70,4 +70,10 @@ openvdb::Int32Grid::Ptr labelsToExtract(const LabelField& field, const ExtractOp
 InterfaceComplex extractInterfaces(const LabelField& field, const ExtractOptions& options = {},
                                    Progress& progress = noProgress(), ExtractStats* stats = nullptr);
 
+/// The same, consuming the field: its labels are prepared in place when nothing else holds them,
+/// and the distance grids are let go once the vertices are placed (unless seeds are wanted), so
+/// they do not add to the extraction's peak memory.
+InterfaceComplex extractInterfaces(LabelField&& field, const ExtractOptions& options = {},
+                                   Progress& progress = noProgress(), ExtractStats* stats = nullptr);
+
 }  // namespace jawmesh
