@@ -39,6 +39,7 @@ public:
     explicit StageLog(nlohmann::json& record) : record_(record) {}
     template <typename F>
     auto run(const std::string& name, Progress& progress, F&& step) {
+        returnFreedMemory();  // what the last stage freed, before this one maps its own
         ProgressStage stage(progress, name);
         const auto start = Clock::now();
         struct Finish {

@@ -7,6 +7,7 @@
 #include "filters/SmallComponents.h"
 #include "filters/WellComposedLabels.h"
 #include "io/Error.h"
+#include "io/ResourceUsage.h"
 
 #include <tbb/parallel_for.h>
 
@@ -156,7 +157,10 @@ InterfaceComplex extractInterfaces(LabelField&& field, const ExtractOptions& opt
     });
     stage.update(0.6);
     // The distances placed the vertices; only the seeds need them again.
-    if (!options.findSeeds) field.distances.clear();
+    if (!options.findSeeds) {
+        field.distances.clear();
+        returnFreedMemory();  // their leaves' pages, before the quads and blocks are allocated
+    }
 
     const std::vector<DualQuad> quads = dualQuadsOf(edges, cells, *labels, mirrored);
     std::vector<LabelEdge>().swap(edges);  // 16 bytes per quad, not needed from here on

@@ -9,4 +9,10 @@ namespace jawmesh {
 /// Cost: one system call.
 std::uint64_t peakResidentMemoryBytes();
 
+/// Hands heap pages that are free but still resident back to the system (glibc's malloc_trim;
+/// nothing elsewhere). Between stages: a stage frees millions of small blocks (grid leaves) whose
+/// pages glibc keeps, while the next stage's large arrays are mapped afresh, so both would count
+/// in the peak. Cost: a walk over the heap, milliseconds.
+void returnFreedMemory();
+
 }  // namespace jawmesh
