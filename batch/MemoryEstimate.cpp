@@ -13,7 +13,7 @@
 namespace jawmesh {
 namespace {
 constexpr double kBaseBytes = 150e6;
-constexpr double kBytesPerSurfaceVoxel = 1200.0;
+constexpr double kBytesPerSurfaceVoxel = 700.0;
 
 /// The first number in a file (cgroup files hold one number, or "max" for no limit).
 std::uint64_t readNumber(const std::string& path) {

@@ -2,12 +2,15 @@
 // only when it fits beside the ones already running.
 //
 // The rule. A run's peak is set by its grids and surfaces at the level-set voxel size h: the
-// narrow bands, the label field and the raw interface surface (before simplification) all grow with
-// the number of voxels the surfaces cross, i.e. with the input surface area A over h^2. So
-//     estimate = 150 MB + 1,200 bytes x A / h^2            (A in mm^2, h in mm)
-// It stays above every measured peak (docs/BENCHMARKS.md, "Batch"): shared mandible at 0.05 mm
-// (A = 23,061 mm^2: 9.6 GB measured, 11.2 GB estimated), 2-tooth phantom at 0.05 mm (2,924 mm^2:
-// 1.3 GB, 1.55 GB), 1-tooth phantom at 0.1 and 0.2 mm (2,543 mm^2: 195 and 106 MB; 455 and 226 MB).
+// narrow bands, the label field and the interface surface all grow with the number of voxels the
+// surfaces cross, i.e. with the input surface area A over h^2. So
+//     estimate = 150 MB + 700 bytes x A / h^2            (A in mm^2, h in mm)
+// It stays above every measured peak (docs/BENCHMARKS.md, sessions 13 and "Batch"), with room for
+// anatomy denser than the shared cases: shared mandible at 0.05 mm (A = 23,061 mm^2: 2.93 GB
+// measured, 6.6 GB estimated), shared maxilla (11,855 mm^2: 2.08 GB, 3.5 GB), the demo's 2-tooth
+// phantom at 0.05 mm (2,924 mm^2: 0.45 GB, 0.97 GB); the 1-tooth phantom at 0.1 and 0.2 mm
+// (2,543 mm^2: 195 and 106 MB measured before session 13; 328 and 195 MB).
+// Until session 13 the factor was 1,200 (the mandible peaked at 9.6 GB).
 // Reading the surfaces to get A costs about a second per million triangles.
 #pragma once
 
