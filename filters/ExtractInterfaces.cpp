@@ -123,6 +123,7 @@ InterfaceComplex extractInterfaces(LabelField&& field, const ExtractOptions& opt
 
     std::vector<LabelEdge> edges = findLabelEdges(*labels, field.distances);
     const std::vector<Coord> cells = dualCellsOf(edges);
+    returnFreedMemory();  // the repair's and the cell masks' grid leaves, before the big arrays
     progress.checkCancelled();
     stage.update(0.4);
 
