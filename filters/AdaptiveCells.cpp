@@ -15,7 +15,6 @@
 #include <cmath>
 #include <optional>
 
-
 namespace jawmesh {
 namespace {
 

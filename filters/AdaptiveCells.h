@@ -24,7 +24,8 @@
 // A block that fails is split into its eight children (tested again), and the blocks around it are
 // certified again (their triangles changed); a block at a self-intersecting or degenerate triangle of
 // the result (exact check once every block passes: of the whole surface the first time, then of the
-// pairs with a triangle that changed) goes back to fine cells; until the surface is clean. Fine cells alone are the fine extraction, which is clean.
+// pairs with a triangle that changed) goes back to fine cells; until the surface is clean. Fine
+// cells alone are the fine extraction, which is clean.
 #pragma once
 
 #include "filters/DualQuads.h"

@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <array>
 
-
 namespace jawmesh {
 namespace {
 

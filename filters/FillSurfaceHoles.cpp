@@ -12,12 +12,6 @@
 namespace jawmesh {
 namespace {
 
-BBox triangleBox(const SurfaceMesh& s, const Tri& t) {
-    BBox b;
-    for (const std::int32_t v : t) b.extend(s.vertices[std::size_t(v)]);
-    return b;
-}
-
 bool overlap(const BBox& a, const BBox& b) { return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all(); }
 
 /// Drops the triangles marked in `removed`, and the vertices no triangle uses then.

@@ -171,15 +171,16 @@ bool segTri(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Ve
     return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
 }
 
+/// The triangles Embree sees: primitive i is triangle ids[i] of mesh (all of them without ids).
 struct BoxData {
     const SurfaceMesh* mesh;
+    const std::vector<std::int32_t>* ids;
+    std::int32_t triangle(unsigned prim) const { return ids ? (*ids)[prim] : std::int32_t(prim); }
 };
 
 void boundsFunc(const RTCBoundsFunctionArguments* args) {
-    const auto* mesh = static_cast<const BoxData*>(args->geometryUserPtr)->mesh;
-    const Tri& t = mesh->triangles[args->primID];
-    BBox b;
-    for (int k = 0; k < 3; ++k) b.extend(mesh->vertices[t[k]]);
+    const auto& data = *static_cast<const BoxData*>(args->geometryUserPtr);
+    const BBox b = triangleBox(*data.mesh, data.mesh->triangles[std::size_t(data.triangle(args->primID))]);
     // Embree boxes are float: widen so that exactly touching triangles are never missed.
     const double pad = 1e-6 * (b.size().maxCoeff() + b.max.cwiseAbs().maxCoeff() + b.min.cwiseAbs().maxCoeff());
     args->bounds_o->lower_x = float(b.min.x() - pad);
@@ -192,9 +193,9 @@ void boundsFunc(const RTCBoundsFunctionArguments* args) {
 
 using PairList = std::vector<std::pair<std::int32_t, std::int32_t>>;
 
-/// What the collision callback needs: the mesh, and per thread the intersecting pairs found.
+/// What the collision callback needs: the triangles, and per thread the intersecting pairs found.
 struct CollideData {
-    const SurfaceMesh* mesh;
+    const BoxData* boxes;
     const std::vector<char>* only;  ///< when set, pairs with neither triangle marked are skipped
     tbb::enumerable_thread_specific<PairList> hits;
 };
@@ -203,10 +204,10 @@ struct CollideData {
 // pairs (about a dozen per triangle, mostly neighbours) took 2.2 GB on 5.9 M triangles.
 void collideFunc(void* userPtr, RTCCollision* collisions, unsigned int count) {
     auto& data = *static_cast<CollideData*>(userPtr);
-    const SurfaceMesh& mesh = *data.mesh;
+    const SurfaceMesh& mesh = *data.boxes->mesh;
     auto& local = data.hits.local();
     for (unsigned int i = 0; i < count; ++i) {
-        auto a = std::int32_t(collisions[i].primID0), b = std::int32_t(collisions[i].primID1);
+        auto a = data.boxes->triangle(collisions[i].primID0), b = data.boxes->triangle(collisions[i].primID1);
         if (a == b) continue;
         if (a > b) std::swap(a, b);
         if (data.only && !(*data.only)[std::size_t(a)] && !(*data.only)[std::size_t(b)]) continue;
@@ -285,17 +286,17 @@ bool trianglesIntersect(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const T
 
 namespace {
 
-/// The intersecting pairs among all triangles of `mesh` (with `only`: pairs with a flagged one),
-/// unsorted: Embree's collision of the triangles' boxes, each candidate tested exactly.
-PairList collidingPairs(const SurfaceMesh& mesh, const std::vector<char>* only) {
+/// The intersecting pairs among the triangles `ids` of `mesh` (all without ids; with `only`: pairs
+/// with a flagged one), unsorted: Embree's collision of their boxes, each candidate tested exactly.
+PairList collidingPairs(const SurfaceMesh& mesh, const std::vector<std::int32_t>* ids, const std::vector<char>* only) {
     RTCDevice device = rtcNewDevice(nullptr);
     if (!device) throw Error("self-intersection check: cannot create an Embree device");
     std::unique_ptr<RTCDeviceTy, void (*)(RTCDevice)> deviceGuard(device, rtcReleaseDevice);
     RTCScene scene = rtcNewScene(device);
     std::unique_ptr<RTCSceneTy, void (*)(RTCScene)> sceneGuard(scene, rtcReleaseScene);
-    BoxData data{&mesh};
+    BoxData data{&mesh, ids};
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(geom, unsigned(mesh.triangles.size()));
+    rtcSetGeometryUserPrimitiveCount(geom, unsigned(ids ? ids->size() : mesh.triangles.size()));
     rtcSetGeometryUserData(geom, &data);
     rtcSetGeometryBoundsFunction(geom, boundsFunc, nullptr);
     rtcCommitGeometry(geom);
@@ -303,17 +304,11 @@ PairList collidingPairs(const SurfaceMesh& mesh, const std::vector<char>* only) 
     rtcReleaseGeometry(geom);
     rtcCommitScene(scene);
 
-    CollideData collide{&mesh, only, {}};
+    CollideData collide{&data, only, {}};
     rtcCollide(scene, scene, collideFunc, &collide);
     PairList pairs;
     for (auto& local : collide.hits) pairs.insert(pairs.end(), local.begin(), local.end());
     return pairs;
-}
-
-BBox triangleBox(const SurfaceMesh& mesh, std::size_t t) {
-    BBox b;
-    for (std::int32_t v : mesh.triangles[t]) b.extend(mesh.vertices[std::size_t(v)]);
-    return b;
 }
 
 /// The flagged triangles and every triangle whose box may meet one of theirs (a hash of grid
@@ -323,7 +318,7 @@ std::vector<std::int32_t> aroundFlagged(const SurfaceMesh& mesh, const std::vect
     const std::size_t nt = mesh.triangles.size();
     double cellMm = 0;
     for (std::size_t t = 0; t < nt; ++t)
-        if (only[t]) cellMm = std::max(cellMm, triangleBox(mesh, t).size().maxCoeff());
+        if (only[t]) cellMm = std::max(cellMm, triangleBox(mesh, mesh.triangles[t]).size().maxCoeff());
     cellMm = std::max(cellMm, 1e-9) * 1.01;
     const auto cellRange = [&](const BBox& b, Eigen::Vector3i& lo, Eigen::Vector3i& hi) {
         for (int a = 0; a < 3; ++a) {
@@ -339,7 +334,7 @@ std::vector<std::int32_t> aroundFlagged(const SurfaceMesh& mesh, const std::vect
     for (std::size_t t = 0; t < nt; ++t) {
         if (!only[t]) continue;
         Eigen::Vector3i lo, hi;
-        cellRange(triangleBox(mesh, t), lo, hi);
+        cellRange(triangleBox(mesh, mesh.triangles[t]), lo, hi);
         for (int x = lo[0]; x <= hi[0]; ++x)
             for (int y = lo[1]; y <= hi[1]; ++y)
                 for (int z = lo[2]; z <= hi[2]; ++z) cells.push_back(key(x, y, z));
@@ -353,7 +348,7 @@ std::vector<std::int32_t> aroundFlagged(const SurfaceMesh& mesh, const std::vect
                 keep[t] = 1;
                 continue;
             }
-            const BBox b = triangleBox(mesh, t);
+            const BBox b = triangleBox(mesh, mesh.triangles[t]);
             Eigen::Vector3i lo, hi;
             cellRange(b, lo, hi);
             // the box's own cells, shrunk back by the slack (a flagged cell within one is enough);
@@ -393,22 +388,11 @@ SelfIntersectionReport findSelfIntersections(const SurfaceMesh& mesh, const std:
             report.degenerate.push_back(std::int32_t(i));
     }
     if (!only) {
-        report.pairs = collidingPairs(mesh, nullptr);
+        report.pairs = collidingPairs(mesh, nullptr, nullptr);
     } else {
-        // Only the flagged triangles and those near them take part (ids mapped back after).
+        // Only the flagged triangles and those near them take part.
         const std::vector<std::int32_t> part = aroundFlagged(mesh, *only);
-        SurfaceMesh sub;
-        sub.vertices = mesh.vertices;
-        std::vector<char> subOnly(part.size());
-        for (std::size_t i = 0; i < part.size(); ++i) {
-            sub.triangles.push_back(mesh.triangles[std::size_t(part[i])]);
-            subOnly[i] = (*only)[std::size_t(part[i])];
-        }
-        report.pairs = collidingPairs(sub, &subOnly);
-        for (auto& [a, b] : report.pairs) {
-            a = part[std::size_t(a)];
-            b = part[std::size_t(b)];
-        }
+        report.pairs = collidingPairs(mesh, &part, only);
     }
     std::sort(report.pairs.begin(), report.pairs.end());  // the same list whatever the threads
     report.pairs.erase(std::unique(report.pairs.begin(), report.pairs.end()), report.pairs.end());

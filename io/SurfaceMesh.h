@@ -41,6 +41,13 @@ struct BBox {
 /// Bounding box of the vertices referenced by at least one triangle (unused vertices ignored).
 BBox boundingBox(const SurfaceMesh& mesh);
 
+/// Bounding box of triangle t of mesh.
+inline BBox triangleBox(const SurfaceMesh& mesh, const Tri& t) {
+    BBox b;
+    for (const std::int32_t v : t) b.extend(mesh.vertices[std::size_t(v)]);
+    return b;
+}
+
 /// Signed volume (mm^3) enclosed by the triangles, by the divergence theorem; positive for a
 /// closed, outward-oriented surface. Meaningless for open or inconsistently oriented meshes.
 double signedVolume(const SurfaceMesh& mesh);
