@@ -33,7 +33,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Times named steps into run.json's "stages" (seconds and peak memory after each step).
+/// Times named steps into run.json's "stages" (wall and CPU seconds, peak memory after each step).
 class StageLog {
 public:
     explicit StageLog(nlohmann::json& record) : record_(record) {}
@@ -46,13 +46,15 @@ public:
             StageLog& log;
             const std::string& name;
             Clock::time_point start;
+            double startCpuSeconds;
             ~Finish() {
                 log.record_["stages"].push_back(
                     {{"name", name},
                      {"seconds", std::chrono::duration<double>(Clock::now() - start).count()},
+                     {"cpu_seconds", processCpuSeconds() - startCpuSeconds},
                      {"peak_memory_bytes", peakResidentMemoryBytes()}});
             }
-        } finish{*this, name, start};
+        } finish{*this, name, start, processCpuSeconds()};
         return step();
     }
 

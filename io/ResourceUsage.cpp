@@ -14,6 +14,13 @@ std::uint64_t peakResidentMemoryBytes() {
     return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;  // Linux reports KiB
 }
 
+double processCpuSeconds() {
+    struct rusage usage {};
+    if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+    auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
 void returnFreedMemory() {
 #if defined(__GLIBC__)
     ::malloc_trim(0);

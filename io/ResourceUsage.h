@@ -9,6 +9,9 @@ namespace jawmesh {
 /// Cost: one system call.
 std::uint64_t peakResidentMemoryBytes();
 
+/// CPU time of this process so far (user + system, all threads), seconds; 0 if unavailable.
+double processCpuSeconds();
+
 /// Hands heap pages that are free but still resident back to the system (glibc's malloc_trim;
 /// nothing elsewhere). Between stages: a stage frees millions of small blocks (grid leaves) whose
 /// pages glibc keeps, while the next stage's large arrays are mapped afresh, so both would count

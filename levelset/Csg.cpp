@@ -156,6 +156,51 @@ openvdb::FloatGrid::Ptr openLevelSet(const openvdb::FloatGrid& grid, double radi
 }
 
 namespace {
+/// The queue of closest-point propagation: pops offers by squared distance, ties by coordinate.
+/// Each voxel's offers have strictly falling distances, so that order is total and the pops are
+/// the same as a single binary heap's; but a heap of millions of offers spends most of its time
+/// in cache misses, so offers wait in buckets of distance and only the current bucket is a heap.
+class OfferQueue {
+public:
+    struct Item {
+        float d2;  ///< squared distance, voxels^2
+        openvdb::Coord c;
+        openvdb::Vec3s cp;  ///< closest point offered, index space
+        bool operator>(const Item& o) const { return d2 != o.d2 ? d2 > o.d2 : o.c < c; }
+    };
+    explicit OfferQueue(double maxD2) : buckets_(std::size_t(std::max(0.0, maxD2) / kWidth) + 2) {}
+    bool empty() const { return heap_.empty() && size_ == 0; }
+    void push(const Item& it) {
+        const std::size_t b = bucketOf(it.d2);
+        if (b <= current_) {  // at or below what is being popped: the heap takes it
+            heap_.push_back(it);
+            std::push_heap(heap_.begin(), heap_.end(), std::greater<Item>());
+            return;
+        }
+        buckets_[b].push_back(it);
+        ++size_;
+    }
+    Item pop() {
+        while (heap_.empty()) {  // the next bucket with offers becomes the heap
+            ++current_;
+            std::swap(heap_, buckets_[current_]);
+            size_ -= heap_.size();
+            std::make_heap(heap_.begin(), heap_.end(), std::greater<Item>());
+        }
+        std::pop_heap(heap_.begin(), heap_.end(), std::greater<Item>());
+        const Item it = heap_.back();
+        heap_.pop_back();
+        return it;
+    }
+
+private:
+    static constexpr double kWidth = 0.25;  ///< voxels^2 per bucket
+    std::size_t bucketOf(float d2) const { return std::min(buckets_.size() - 1, std::size_t(double(d2) / kWidth)); }
+    std::vector<std::vector<Item>> buckets_;
+    std::vector<Item> heap_;
+    std::size_t current_ = 0, size_ = 0;
+};
+
 /// Closest-point propagation (see extendExteriorDistance) on the side `side` (+1 outside, -1
 /// inside) of grid, seeded by the band voxels with seedLowMm <= side * value <= seedHighMm, into
 /// region voxels with side * value > max(seedLowMm, 0); writes side * distance for voxels off the
@@ -185,13 +230,7 @@ openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, c
     // the closest point it was offered by its settled neighbours. Ties break by coordinate, so the
     // result is deterministic. (Settling layer by layer instead errs by over half a voxel at 6
     // voxels from a sphere.)
-    struct Item {
-        float d2;
-        Coord c;
-        Vec3s cp;
-        bool operator>(const Item& o) const { return d2 != o.d2 ? d2 > o.d2 : o.c < c; }
-    };
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    OfferQueue queue(max2);
     openvdb::FloatTree offered(std::numeric_limits<float>::max());
     openvdb::MaskTree settled(false);
     openvdb::tree::ValueAccessor<openvdb::FloatTree> offAcc(offered);
@@ -220,8 +259,7 @@ openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, c
     }
     auto outAcc = out->getAccessor();
     while (!queue.empty()) {
-        const Item it = queue.top();
-        queue.pop();
+        const OfferQueue::Item it = queue.pop();
         if (doneAcc.isValueOn(it.c)) continue;
         doneAcc.setValueOn(it.c);
         if (withBand || !ga.isValueOn(it.c)) outAcc.setValue(it.c, sideF * float(std::sqrt(double(it.d2)) * voxel));
