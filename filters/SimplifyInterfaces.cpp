@@ -287,7 +287,7 @@ public:
             if (++popped % 65536 == 0) progress.checkCancelled();
             if (dead_[std::size_t(c.u)] || stamp_[std::size_t(c.u)] != c.stamp) continue;
             if (!evaluate(c.u, c.v, &plan_)) {
-                schedule(c.u, true);  // terminates: unchanged state gives the same verdict
+                schedule(c.u, true, c.v);  // terminates: unchanged state gives the same verdict
                 continue;
             }
             apply(c.u, c.v, plan_);
@@ -834,9 +834,10 @@ private:
         dead_[std::size_t(u)] = 1;
     }
 
-    /// Pushes u's cheapest collapse that passes the checks (all of them when `full`, else all but
-    /// the intersection test); none when no neighbour does.
-    void schedule(std::int32_t u, bool full = false) {
+    /// Pushes u's cheapest collapse toward a neighbour: lazily the cheapest by cost alone, or when
+    /// `full` the cheapest that passes every check, none when no neighbour does. `failed`: the
+    /// neighbour whose collapse was just refused (nothing changed since: not checked again).
+    void schedule(std::int32_t u, bool full = false, std::int32_t failed = -1) {
         ++stamp_[std::size_t(u)];
         if (dead_[std::size_t(u)] || frozen_[std::size_t(u)] || vtris_[std::size_t(u)].empty()) return;
         cand_.clear();
@@ -858,7 +859,7 @@ private:
             return;
         }
         for (const auto& [cost, v] : costs_)
-            if (evaluate(u, v, &scratchPlan_)) {
+            if (v != failed && evaluate(u, v, &scratchPlan_)) {
                 heap_.push(Candidate{cost, u, v, stamp_[std::size_t(u)]});
                 return;
             }

@@ -4,6 +4,9 @@
 #include "tet/ElementQuality.h"
 #include "tet/TetFaceAdjacency.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -100,12 +103,15 @@ public:
 
     /// The bad tets, worst first (ties by index).
     std::vector<std::int32_t> badTets() const {
+        // scored in parallel (every pass scores all tets), collected in index order
+        std::vector<double> scores(m_.tets.size(), kInvalid);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_.tets.size(), 8192), [&](const auto& r) {
+            for (std::size_t t = r.begin(); t != r.end(); ++t)
+                if (alive_[t]) scores[t] = tetScore(std::int32_t(t));
+        });
         std::vector<std::pair<double, std::int32_t>> bad;
         for (std::size_t t = 0; t < m_.tets.size(); ++t)
-            if (alive_[t]) {
-                const double s = tetScore(std::int32_t(t));
-                if (s < target_) bad.emplace_back(s, std::int32_t(t));
-            }
+            if (alive_[t] && scores[t] < target_) bad.emplace_back(scores[t], std::int32_t(t));
         std::sort(bad.begin(), bad.end());
         std::vector<std::int32_t> out;
         for (auto& b : bad) out.push_back(b.second);
