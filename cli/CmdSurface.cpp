@@ -40,15 +40,18 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
     const double secondsRead = secondsSince(start);
 
     const auto tExtract = std::chrono::steady_clock::now();
+    const double cpuStart = processCpuSeconds();
     ExtractOptions extract;
     extract.findSeeds = !opt.simplifyOn;  // simplification places them on its output
     extract.adaptive = matchedTo(opt.simplify, extract.adaptive);
     ExtractStats extractStats;
     InterfaceComplex complex = extractInterfaces(std::move(field), extract, progress, &extractStats);
     const double secondsExtract = secondsSince(tExtract);
+    const double cpuExtract = processCpuSeconds() - cpuStart;
     SimplifyStats stats;
     if (opt.simplifyOn) complex = simplifyInterfaces(complex, opt.simplify, progress, &stats);
     else complex = withoutCarried(std::move(complex));
+    const double cpuSimplify = processCpuSeconds() - cpuStart - cpuExtract;
 
     const std::string jaw = jawName(jawOfField);
     StagedFolder staged(opt.output);
@@ -62,6 +65,7 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
                         {"seeds", complex.seeds.size()},
                         {"seconds", {{"read", secondsRead}, {"extract", secondsExtract}, {"simplify", stats.seconds},
                                      {"total", secondsSince(start)}}},
+                        {"cpu_seconds", {{"extract", cpuExtract}, {"simplify", cpuSimplify}}},
                         {"peak_memory_bytes", peakResidentMemoryBytes()}};
     j["adaptive"] = toJson(extractStats.adaptive);
     if (opt.simplifyOn) {

@@ -700,30 +700,39 @@ private:
         std::sort(near_.begin(), near_.end());
         near_.erase(std::unique(near_.begin(), near_.end()), near_.end());
         const InputSurface& in = *state_.input;
+        // positions side by side: every sample scans them all
+        nearPos_.clear();
+        for (std::int32_t q : near_) nearPos_.push_back(points_[std::size_t(q)]);
         for (std::size_t m = 0; m < moved_.size(); ++m) {
             const auto& C = newCorners_[m];
             const Vec3 samples[4] = {(C[0] + C[1] + C[2]) / 3.0, 0.5 * (C[0] + C[1]), 0.5 * (C[1] + C[2]), 0.5 * (C[2] + C[0])};
+            // near the teeth when any corner or the nearest vertex is (NearTeeth.h): the tighter bound
+            double cornerBound = std::numeric_limits<double>::infinity();
+            for (std::int32_t c : newTris_[m]) cornerBound = std::min(cornerBound, boundOf(gid_[std::size_t(c)], moved_[m]));
             for (const Vec3& x : samples) {
-                // p: the nearest input vertex (on the fine interface); c: the nearest corner, whose
-                // input triangles are searched (carried vertices have none)
-                std::int32_t p = -1, c = -1;
-                double d2 = std::numeric_limits<double>::infinity(), c2 = d2;
-                for (std::int32_t q : near_) {
-                    const double e = (points_[std::size_t(q)] - x).squaredNorm();
+                // p: the nearest input vertex (on the fine interface)
+                std::size_t p = 0;
+                double d2 = std::numeric_limits<double>::infinity();
+                for (std::size_t i = 0; i < nearPos_.size(); ++i) {
+                    const double e = (nearPos_[i] - x).squaredNorm();
                     if (e < d2) {
                         d2 = e;
-                        p = q;
-                    }
-                    if (e < c2 && in.around.count(q) > 0) {
-                        c2 = e;
-                        c = q;
+                        p = i;
                     }
                 }
-                // near the teeth when any corner or that vertex is (NearTeeth.h): the tighter bound
-                double bound = boundOf(p, moved_[m]);
-                for (std::int32_t c : newTris_[m]) bound = std::min(bound, boundOf(gid_[std::size_t(c)], moved_[m]));
+                const double bound = std::min(boundOf(near_[p], moved_[m]), cornerBound);
                 const double b2 = bound * bound;
                 if (d2 <= b2) continue;  // an input vertex (on the input surface) is that close
+                // c: the nearest corner, whose input triangles are searched (carried vertices have none)
+                std::int32_t c = -1;
+                double c2 = std::numeric_limits<double>::infinity();
+                for (std::size_t i = 0; i < nearPos_.size(); ++i) {
+                    const double e = (nearPos_[i] - x).squaredNorm();
+                    if (e < c2 && in.around.count(near_[i]) > 0) {
+                        c2 = e;
+                        c = near_[i];
+                    }
+                }
                 const auto within = [&](std::int32_t t) {
                     const Tri& f = (*in.tris)[std::size_t(t)];
                     return squaredDistanceToTriangle(x, points_[std::size_t(f[0])], points_[std::size_t(f[1])],
@@ -884,6 +893,7 @@ private:
     std::vector<char> dead_;
     std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts_;
     std::vector<std::int32_t> near_;    ///< newTrianglesNearInput's input vertices
+    std::vector<Vec3> nearPos_;         ///< and their positions
     std::unordered_map<int, PairRule> rules_;
     BoxGrid grid_;
     double cosTurn_ = 0.5;
