@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -407,16 +408,21 @@ private:
         double h = 0.25 * shortest;
         Vec3 p = start;
         for (int iter = 0; iter < 60 && h > 1e-4 * shortest; ++iter) {
+            // the 14 trial positions are scored in parallel, then compared in order (as one thread would)
+            std::array<Vec3, 14> trial;
+            std::array<Objective, 14> trialScore;
+            for (std::size_t k = 0; k < trial.size(); ++k)
+                trial[k] = p + h * Vec3(dirs[k][0], dirs[k][1], dirs[k][2]).normalized();
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, trial.size(), 7), [&](const auto& r) {
+                for (std::size_t k = r.begin(); k != r.end(); ++k) trialScore[k] = scoreWith(tets, v, trial[k]);
+            });
             Objective stepBest = best;
             Vec3 stepP = p;
-            for (const auto& d : dirs) {
-                const Vec3 q = p + h * Vec3(d[0], d[1], d[2]).normalized();
-                const Objective s = scoreWith(tets, v, q);
-                if (s.betterThan(stepBest)) {
-                    stepBest = s;
-                    stepP = q;
+            for (std::size_t k = 0; k < trial.size(); ++k)
+                if (trialScore[k].betterThan(stepBest)) {
+                    stepBest = trialScore[k];
+                    stepP = trial[k];
                 }
-            }
             if (stepBest.betterThan(best)) {
                 best = stepBest;
                 p = stepP;
