@@ -4,6 +4,7 @@
 #include "filters/RegionWedges.h"
 #include "filters/SelfIntersections.h"
 #include "filters/TriangleGeometry.h"
+#include "io/Error.h"
 #include "io/VertexTriangles.h"
 
 #include <openvdb/tools/Morphology.h>
@@ -480,19 +481,33 @@ void collectCarried(Mesh& mesh, std::size_t cellCount, AdaptiveSurface& out, Ada
     if (!anyBlock) return;
     const VertexTriangles around = vertexTriangles(out.triangles, cellCount);
     out.carried.assign(out.triangles.size(), {});
-    Scratch s;
-    for (Block& k : mesh.blocks) {
+    // per block, in parallel: the emitted triangle of each fan triangle (the fan as certified, in
+    // trianglesAt's order); then the members go to their carriers in block order
+    std::vector<std::vector<std::int32_t>> emittedOf(mesh.blocks.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.blocks.size(), 256), [&](const auto& r) {
+        Scratch s;
+        for (std::size_t b = r.begin(); b != r.end(); ++b) {
+            const Block& k = mesh.blocks[b];
+            if (k.members.empty()) continue;
+            mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
+            std::vector<std::int32_t>& emitted = emittedOf[b];
+            emitted.assign(s.fan.size(), -1);
+            for (std::size_t i = 0; i < s.fan.size(); ++i)
+                for (const std::int32_t* t = around.begin(k.vertex); t != around.end(k.vertex); ++t)
+                    if (out.triangles[std::size_t(*t)] == s.fan[i]) emitted[i] = *t;
+        }
+    });
+    for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {
+        const Block& k = mesh.blocks[b];
         if (k.members.empty()) continue;
-        // the fan as certified, in trianglesAt's order: map its indices to the emitted triangles
-        mesh.trianglesAt(k.vertex, k.vertex, s.quadIds, s.fan, s.fanSides);
-        std::vector<std::int32_t> emitted(s.fan.size(), -1);
-        for (std::size_t i = 0; i < s.fan.size(); ++i)
-            for (const std::int32_t* t = around.begin(k.vertex); t != around.end(k.vertex); ++t)
-                if (out.triangles[std::size_t(*t)] == s.fan[i]) emitted[i] = *t;
+        const std::vector<std::int32_t>& emitted = emittedOf[b];
+        if (std::find(emitted.begin(), emitted.end(), -1) != emitted.end())
+            throw Error("adaptive surface: internal error: a certified fan triangle was not emitted");
         for (std::size_t i = 0; i < k.members.size(); ++i)
             if (k.members[i] != k.vertex) out.carried[std::size_t(emitted[std::size_t(k.carrier[i])])].push_back(k.members[i]);
-        for (const Tri& t : s.fan)
-            for (std::int32_t c : t) out.sampleErrorMm[std::size_t(c)] = std::max(out.sampleErrorMm[std::size_t(c)], k.sampleErrorMm);
+        for (const std::int32_t t : emitted)
+            for (std::int32_t c : out.triangles[std::size_t(t)])
+                out.sampleErrorMm[std::size_t(c)] = std::max(out.sampleErrorMm[std::size_t(c)], k.sampleErrorMm);
         ++st.blocks;
         st.cellsMerged += k.members.size();
         st.maxCarriedErrorMm = std::max(st.maxCarriedErrorMm, double(k.carriedErrorMm));
