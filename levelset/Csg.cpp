@@ -9,7 +9,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <queue>
 #include <string>
 #include <vector>
 

@@ -402,17 +402,21 @@ private:
             for (auto w : e)
                 if (w != v) shortest = std::min(shortest, (P(w) - start).norm());
         if (!std::isfinite(shortest) || shortest <= 0) return {start, best};
-        static const double dirs[14][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
-                                           {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {1, -1, -1}, {-1, 1, 1}, {-1, 1, -1},
-                                           {-1, -1, 1}, {-1, -1, -1}};
+        // the 6 axes and 8 diagonals, as unit vectors
+        static const std::array<Vec3, 14> dirs = [] {
+            const double d[14][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},   {0, -1, 0},  {0, 0, 1},   {0, 0, -1},  {1, 1, 1},
+                                     {1, 1, -1}, {1, -1, 1}, {1, -1, -1}, {-1, 1, 1}, {-1, 1, -1}, {-1, -1, 1}, {-1, -1, -1}};
+            std::array<Vec3, 14> unit;
+            for (std::size_t k = 0; k < unit.size(); ++k) unit[k] = Vec3(d[k][0], d[k][1], d[k][2]).normalized();
+            return unit;
+        }();
         double h = 0.25 * shortest;
         Vec3 p = start;
         for (int iter = 0; iter < 60 && h > 1e-4 * shortest; ++iter) {
             // the 14 trial positions are scored in parallel, then compared in order (as one thread would)
             std::array<Vec3, 14> trial;
             std::array<Objective, 14> trialScore;
-            for (std::size_t k = 0; k < trial.size(); ++k)
-                trial[k] = p + h * Vec3(dirs[k][0], dirs[k][1], dirs[k][2]).normalized();
+            for (std::size_t k = 0; k < trial.size(); ++k) trial[k] = p + h * dirs[k];
             tbb::parallel_for(tbb::blocked_range<std::size_t>(0, trial.size(), 7), [&](const auto& r) {
                 for (std::size_t k = r.begin(); k != r.end(); ++k) trialScore[k] = scoreWith(tets, v, trial[k]);
             });
