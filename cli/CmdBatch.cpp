@@ -13,6 +13,7 @@
 #include "batch/Summary.h"
 #include "cli/BatchTask.h"
 #include "cli/Commands.h"
+#include "cli/NumberChecks.h"
 #include "cli/Pipeline.h"
 #include "io/AtomicFile.h"
 #include "io/Error.h"
@@ -221,10 +222,11 @@ void addBatchCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("-o,--output", args->outDir, "Output folder (also where the manifest lives)");
     cmd->add_option("--config", args->config, "JSON file of run options (keys as recorded in run.json)")
         ->check(CLI::ExistingFile);
-    cmd->add_option("--jobs", args->jobs, "Cases at once, at most (default: cores); fewer when memory is short")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--memory-gb", args->memoryGb, "Memory budget for the cases at once (default: 90% of available)")
-        ->check(CLI::PositiveNumber);
+    cmd->add_option("--jobs", args->jobs, "Cases at once, at most (0: as many as cores); fewer when memory is short")
+        ->check(nonNegativeNumber());
+    cmd->add_option("--memory-gb", args->memoryGb, "Memory budget for the cases at once, GB (default: 90% of the available memory)")
+        ->default_str("")
+        ->check(positiveNumber());
     auto* slurm = cmd->add_flag("--slurm", args->slurm, "Write a Slurm job-array script (<out>/slurm/batch.sbatch)");
     cmd->add_flag("--submit", args->submit, "With --slurm: submit it with sbatch");
     cmd->add_option("--partition", args->slurmOptions.partition, "Slurm partition")->needs(slurm);
@@ -232,11 +234,12 @@ void addBatchCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("--mem", args->slurmOptions.mem, "Slurm memory per task, e.g. 8G (default: the largest estimate)")
         ->needs(slurm);
     cmd->add_option("--cpus", args->slurmOptions.cpus, "Slurm CPUs per task (also its threads)")
-        ->check(CLI::PositiveNumber)
+        ->check(positiveNumber())
         ->capture_default_str()
         ->needs(slurm);
     cmd->add_option("--array-task", args->arrayTask, "Run task <i> of <out>/manifest.json (what each array task runs)")
-        ->check(CLI::NonNegativeNumber);
+        ->default_str("")
+        ->check(nonNegativeNumber());
     cmd->add_option("--status", args->statusDir, "Collect the results of a batch output folder (e.g. after Slurm)")
         ->check(CLI::ExistingDirectory);
     cmd->callback([args, &global] { runBatch(*args, global); });

@@ -1,6 +1,7 @@
 // jawmesh carve: case -> level sets -> carved PDLs -> label field (.vdb) + summary.json.
 #include "batch/MemoryEstimate.h"
 #include "cli/Commands.h"
+#include "cli/NumberChecks.h"
 #include "cli/Pipeline.h"
 #include "io/AtomicFile.h"
 #include "io/Case.h"
@@ -128,20 +129,22 @@ void addCarveCommand(CLI::App& app, GlobalOptions& global) {
         "tooth_*,pdl_*}.vdb and <out>/<jaw>/summary.json (PDL volume and thickness statistics per tooth, warnings).");
     cmd->add_option("case", opt->caseDir, "Case folder (Open-Full-Jaw layout)")->required()->check(CLI::ExistingDirectory);
     cmd->add_option("-o,--output", opt->output, "Output folder")->required();
-    cmd->add_option("--jaw", opt->jaw, "mandible | maxilla (default mandible)")->check(CLI::IsMember({"mandible", "maxilla"}));
-    cmd->add_option("--voxel", opt->voxelMm, "Voxel size, mm (default 0.05)")->check(CLI::PositiveNumber);
-    cmd->add_option("--pdl-thickness", opt->carve.pdlThicknessMm, "PDL thickness, mm (default 0.2)")->check(CLI::PositiveNumber);
-    cmd->add_option("--pdl-ratio", opt->carve.pdlRatio, "Share of the thickness taken from the root, 0..1 (default 0.5)")
+    cmd->add_option("--jaw", opt->jaw, "mandible | maxilla")->check(CLI::IsMember({"mandible", "maxilla"}));
+    cmd->add_option("--voxel", opt->voxelMm, "Voxel size, mm")->check(positiveNumber());
+    cmd->add_option("--pdl-thickness", opt->carve.pdlThicknessMm, "PDL thickness, mm")->check(positiveNumber());
+    cmd->add_option("--pdl-ratio", opt->carve.pdlRatio, "Share of the thickness taken from the root, 0..1")
         ->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--pdl-profile", opt->profile, "Thickness along the root: cervical,mid,apical (mm)")->delimiter(',');
-    cmd->add_option("--clearance", opt->carve.clearanceVoxels, "Gap between different teeth and PDLs, voxels (default 1)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--gap-bridge", opt->carve.gapBridgeMm, "Widest root-socket gap bridged, mm (default 0.5)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--pdl-profile", opt->profile, "Thickness along the root: cervical,mid,apical, mm (default: uniform)")
+        ->delimiter(',')
+        ->default_str("");
+    cmd->add_option("--clearance", opt->carve.clearanceVoxels, "Gap between different teeth and PDLs, voxels")
+        ->check(nonNegativeNumber());
+    cmd->add_option("--gap-bridge", opt->carve.gapBridgeMm, "Widest root-socket gap bridged, mm")->check(nonNegativeNumber());
     cmd->add_option("--bone-shift", opt->carve.boneShiftMaxMm,
-                    "Farthest a bridged gap moves the bone surface, mm (default 0.2; wider gaps erode the root less)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--apex-taper", opt->carve.apexTaperMm, "Root erosion falls to half over this length to the apex, mm (default 1; 0 = off)")
-        ->check(CLI::NonNegativeNumber);
+                    "Farthest a bridged gap moves the bone surface, mm (wider gaps erode the root less)")
+        ->check(nonNegativeNumber());
+    cmd->add_option("--apex-taper", opt->carve.apexTaperMm, "Root erosion falls to half over this length to the apex, mm (0 = off)")
+        ->check(nonNegativeNumber());
     cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");
     cmd->add_flag("!--no-memory-check", opt->memoryCheck,
                   "Run even when the memory estimate exceeds the available memory");

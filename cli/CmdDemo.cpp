@@ -35,8 +35,8 @@ void runDemo(const DemoOptions& opt, const GlobalOptions& global) {
 void addDemoCommand(CLI::App& app, GlobalOptions& global) {
     auto opt = std::make_shared<DemoOptions>();
     auto* cmd = app.add_subcommand("demo", "Generate the synthetic jaw phantom and run the whole pipeline on it");
-    cmd->add_option("-o,--output", opt->outDir, "Output folder (default out/demo)");
-    cmd->add_option("--teeth", opt->teeth, "Teeth in the phantom (default 2)")->check(CLI::Range(1, 16));
+    cmd->add_option("-o,--output", opt->outDir, "Output folder");
+    cmd->add_option("--teeth", opt->teeth, "Teeth in the phantom")->check(CLI::Range(1, 16));
     cmd->callback([opt, &global] { runDemo(*opt, global); });
 }
 

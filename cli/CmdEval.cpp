@@ -1,6 +1,7 @@
 // jawmesh eval <mesh> [--input <case>/input/<jaw>] -o <dir>: the accuracy and quality report of a
 // labeled tet mesh (report.json, report.html, sections/*.png).
 #include "cli/Commands.h"
+#include "cli/NumberChecks.h"
 #include "cli/EvalReport.h"
 #include "io/Error.h"
 #include "io/GmshReader.h"
@@ -76,19 +77,19 @@ void addEvalCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("--jaw", opt->jaw, "Jaw of the input when --input is a case folder (default: from the mesh labels)")
         ->check(CLI::IsMember({"mandible", "maxilla"}));
     cmd->add_option("--spacing", opt->eval.sampleSpacingMm, "Area-sample spacing for means and percentiles, mm")
-        ->check(CLI::PositiveNumber)
+        ->check(positiveNumber())
         ->capture_default_str();
     cmd->add_option("--tolerance", opt->eval.hausdorffToleranceMm, "Maxima (Hausdorff) exact to this, mm")
-        ->check(CLI::PositiveNumber)
+        ->check(positiveNumber())
         ->capture_default_str();
     cmd->add_option("--pdl-target", opt->eval.pdlTargetMm, "PDL target thickness for the verdict, mm")
-        ->check(CLI::PositiveNumber)
+        ->check(positiveNumber())
         ->capture_default_str();
     cmd->add_option("--pdl-tolerance", opt->eval.pdlToleranceMm, "Allowed PDL deviation (p05 and p95), mm")
-        ->check(CLI::NonNegativeNumber)
+        ->check(nonNegativeNumber())
         ->capture_default_str();
     cmd->add_option("--crown-tolerance", opt->eval.crownToleranceMm, "Allowed crown Hausdorff distance, mm")
-        ->check(CLI::PositiveNumber)
+        ->check(positiveNumber())
         ->capture_default_str();
     cmd->add_option("--min-dihedral", opt->eval.minDihedralDeg, "Quality check: smallest acceptable dihedral angle, degrees")
         ->capture_default_str();

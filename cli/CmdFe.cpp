@@ -1,6 +1,7 @@
 // jawmesh fe <out>/<jaw>: FE decks of a meshed jaw (tipping or biting) in FEBio, PolyFEM and
 // CalculiX formats, optionally solved with CalculiX (ccx) and summarised.
 #include "cli/Commands.h"
+#include "cli/NumberChecks.h"
 #include "fe/FeDecks.h"
 #include "fe/JoinMeshes.h"
 #include "fe/RunCalculix.h"
@@ -129,7 +130,7 @@ void addFeCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("--materials", opt->materialsPath, "JSON overriding materials: {\"pdl\": {\"E\": 68.9, \"nu\": 0.45, \"rho\": 1.142e-9}}")
         ->check(CLI::ExistingFile);
     cmd->add_flag("--solve", opt->solve, "Run CalculiX (ccx) on the .inp deck and summarise its results");
-    cmd->add_option("--solver-threads", opt->threads, "Threads for ccx (OMP_NUM_THREADS)")->check(CLI::PositiveNumber)->capture_default_str();
+    cmd->add_option("--solver-threads", opt->threads, "Threads for ccx (OMP_NUM_THREADS)")->check(positiveNumber())->capture_default_str();
     cmd->callback([opt, &global] { runFe(*opt, global); });
 }
 

@@ -1,5 +1,6 @@
 // jawmesh levelset: one surface -> one narrow-band signed distance grid (.vdb).
 #include "cli/Commands.h"
+#include "cli/NumberChecks.h"
 #include "io/AtomicFile.h"
 #include "io/Error.h"
 #include "io/MeshIO.h"
@@ -76,8 +77,8 @@ void addLevelsetCommand(CLI::App& app, GlobalOptions& global) {
         "overlapping shells (their union is inside), inward-oriented cavity shells.");
     cmd->add_option("surface", opt->input, "Input surface (.stl, .obj, .ply, .off), mm")->required()->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", opt->output, "Output grid file (.vdb)")->required();
-    cmd->add_option("--voxel", opt->voxelMm, "Voxel size, mm (e.g. 0.05)")->required()->check(CLI::PositiveNumber);
-    cmd->add_option("--band", opt->bandVoxels, "Narrow band half width, voxels (default 3)")->check(CLI::Range(1.0, 1000.0));
+    cmd->add_option("--voxel", opt->voxelMm, "Voxel size, mm (e.g. 0.05)")->required()->default_str("")->check(positiveNumber());
+    cmd->add_option("--band", opt->bandVoxels, "Narrow band half width, voxels")->check(CLI::Range(1.0, 1000.0));
     cmd->add_flag("--json", opt->json, "Print one JSON object: active voxels, bounding boxes, seconds, peak memory");
     cmd->callback([opt, &global] { runLevelset(*opt, global); });
 }

@@ -1,6 +1,7 @@
 // jawmesh run: the main job, case folder -> validated labeled meshes for every jaw.
 #include "batch/MemoryEstimate.h"
 #include "cli/Commands.h"
+#include "cli/NumberChecks.h"
 #include "cli/Pipeline.h"
 #include "io/Error.h"
 
@@ -53,7 +54,9 @@ void addRunCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("--jaw", opt->jaw, "Only this jaw")->check(CLI::IsMember({"mandible", "maxilla"}));
     cmd->add_option("--config", opt->config, "JSON file of options (keys as recorded in run.json)")
         ->check(CLI::ExistingFile);
-    cmd->add_option("--voxel", opt->voxelMm, "Level-set voxel size, mm (default 0.05)")->check(CLI::PositiveNumber);
+    cmd->add_option("--voxel", opt->voxelMm, "Level-set voxel size, mm (else the --config file's, else the default)")
+        ->check(positiveNumber())
+        ->default_str(CLI::detail::to_string(RunOptions{}.voxelSizeMm));
     cmd->add_flag("--write-levelsets", opt->writeLevelSets, "Also write the carved level sets (.vdb)");
     cmd->add_option("--from-vdb", opt->fromVdb, "Resume from a carved level-set folder (e.g. an edited one)")
         ->check(CLI::ExistingDirectory);

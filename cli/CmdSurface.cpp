@@ -1,6 +1,7 @@
 // jawmesh surface: carved label field -> simplified interface complex for TetGen (.poly with facet
 // markers = label pairs and one seed per region component), one .ply per region, summary JSON.
 #include "cli/Commands.h"
+#include "cli/NumberChecks.h"
 #include "filters/ExtractInterfaces.h"
 #include "filters/SimplifyInterfaces.h"
 #include "io/AtomicFile.h"
@@ -89,27 +90,27 @@ void addSurfaceCommand(CLI::App& app, GlobalOptions& global) {
         ->check(CLI::ExistingDirectory);
     cmd->add_option("-o,--output", opt->output, "Output folder")->required();
     cmd->add_option("--tooth-error", opt->simplify.toothErrorMm,
-                    "Error bound on the crowns (tooth / outside) and the crest cap, mm (default 0.02)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--pdl-error", opt->simplify.pdlErrorMm, "Error bound on tooth / PDL and PDL / bone, mm (default 0.02)")
-        ->check(CLI::NonNegativeNumber);
+                    "Error bound on the crowns (tooth / outside) and the crest cap, mm")
+        ->check(nonNegativeNumber());
+    cmd->add_option("--pdl-error", opt->simplify.pdlErrorMm, "Error bound on tooth / PDL and PDL / bone, mm")
+        ->check(nonNegativeNumber());
     cmd->add_option("--pdl-max-edge", opt->simplify.pdlMaxEdgeMm,
-                    "Longest edge on tooth / PDL and PDL / bone, mm (default 0.4)")
-        ->check(CLI::PositiveNumber);
+                    "Longest edge on tooth / PDL and PDL / bone, mm")
+        ->check(positiveNumber());
     cmd->add_option("--cap-max-edge", opt->simplify.capMaxEdgeMm,
-                    "Longest edge on the crest cap (PDL / outside), mm (default 0.065)")
-        ->check(CLI::PositiveNumber);
-    cmd->add_option("--bone-error", opt->simplify.boneErrorMm, "Error bound on the bone surface near teeth, mm (default 0.08)")
-        ->check(CLI::NonNegativeNumber);
+                    "Longest edge on the crest cap (PDL / outside), mm")
+        ->check(positiveNumber());
+    cmd->add_option("--bone-error", opt->simplify.boneErrorMm, "Error bound on the bone surface near teeth, mm")
+        ->check(nonNegativeNumber());
     cmd->add_option("--bone-far-error", opt->simplify.boneFarErrorMm,
-                    "Error bound on the bone surface farther than --near-teeth from any tooth, mm (default 0.15)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--near-teeth", opt->simplify.boneNearTeethMm, "Bone within this distance of a tooth or PDL is near, mm (default 2)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--min-angle", opt->simplify.minAngleDeg, "Smallest angle a collapse may create, degrees (default 15)")
+                    "Error bound on the bone surface farther than --near-teeth from any tooth, mm")
+        ->check(nonNegativeNumber());
+    cmd->add_option("--near-teeth", opt->simplify.boneNearTeethMm, "Bone within this distance of a tooth or PDL is near, mm")
+        ->check(nonNegativeNumber());
+    cmd->add_option("--min-angle", opt->simplify.minAngleDeg, "Smallest angle a collapse may create, degrees")
         ->check(CLI::Range(0.0, 59.0));
     cmd->add_option("--min-wedge", opt->simplify.minWedgeDeg,
-                    "Smallest angle a region may come to span around an edge, degrees (default 20; 0 = off)")
+                    "Smallest angle a region may come to span around an edge, degrees (0 = off)")
         ->check(CLI::Range(0.0, 89.0));
     cmd->add_flag("!--no-simplify", opt->simplifyOn, "Write the raw extraction");
     cmd->add_flag("--json", opt->json, "Also print the summary as one JSON object on stdout");

@@ -19,8 +19,9 @@ struct GlobalOptions {
     int threads = 0;  ///< 0 = all hardware threads
 };
 
-/// Exit codes: 0 success, 1 a stage failed or input was bad, 2 usage error (CLI11), 130 cancelled.
+/// Exit codes: 0 success, 1 a stage failed or input was bad, 2 usage error, 130 cancelled.
 constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
 constexpr int kExitCancelled = 130;
 
 using CommandAdder = void (*)(CLI::App& app, GlobalOptions& global);
@@ -37,6 +38,9 @@ void addRegisteredCommands(CLI::App& app, GlobalOptions& global);
 inline double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
+
+/// One line for a command-line error: CLI11's message (it names the option) and where help is.
+std::string usageErrorLine(const CLI::App& app, const CLI::ParseError& error);
 
 /// The terminal progress reporter of this process (quiet or not per the global options).
 Progress& terminalProgress(const GlobalOptions& global);

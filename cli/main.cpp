@@ -1,5 +1,6 @@
 // jawmesh: dense CBCT segmentation surfaces -> conformal labeled FE meshes of jaws.
 #include "cli/Commands.h"
+#include "cli/NumberChecks.h"
 #include "cli/TerminalProgress.h"
 #include "io/Error.h"
 
@@ -31,6 +32,19 @@ void addRegisteredCommands(CLI::App& app, GlobalOptions& global) {
     for (const auto& entry : commands) entry.second(app, global);
 }
 
+std::string usageErrorLine(const CLI::App& app, const CLI::ParseError& error) {
+    // An argument nobody takes is the user's mistake even when CLI11 first finds a missing one.
+    const std::vector<std::string> extra = app.remaining(true);
+    std::string message = extra.empty() ? error.what() : "unknown argument " + extra.front();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    std::string command = "jawmesh";
+    for (const CLI::App* sub = &app; sub && !sub->get_subcommands().empty();) {
+        sub = sub->get_subcommands().back();
+        command += " " + sub->get_name();
+    }
+    return message + " (see `" + command + " --help`)";
+}
+
 Progress& terminalProgress(const GlobalOptions& global) {
     static TerminalProgress loud(false);
     static TerminalProgress quiet(true);
@@ -44,6 +58,10 @@ int main(int argc, char** argv) {
     CLI::App app{"jawmesh: dense jaw segmentation surfaces -> conformal labeled tetrahedral FE models"};
     app.set_version_flag("--version", std::string("jawmesh ") + JAWMESH_VERSION);
     app.require_subcommand(1);
+    // Global options may also follow the subcommand (`jawmesh run case -o out --quiet`); every
+    // option's help shows its default, taken from the variable it is bound to.
+    app.fallthrough();
+    app.option_defaults()->always_capture_default();
     GlobalOptions global;
     app.add_flag("-q,--quiet", global.quiet, "No progress output");
     // Results never depend on the thread count; this only bounds the cores used.
@@ -57,7 +75,7 @@ int main(int argc, char** argv) {
                                                                        static_cast<std::size_t>(n));
            },
            "Worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(nonNegativeNumber());
     addRegisteredCommands(app, global);
 
     app.preparse_callback([](std::size_t) { openvdb::initialize(); });
@@ -65,7 +83,9 @@ int main(int argc, char** argv) {
         TerminalProgress::installInterruptHandler();
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::fprintf(stderr, "jawmesh: usage error: %s\n", usageErrorLine(app, e).c_str());
+        return kExitUsage;
     } catch (const Cancelled& e) {
         std::fprintf(stderr, "\njawmesh: %s; no partial output written\n", e.what());
         return kExitCancelled;
