@@ -5,8 +5,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <chrono>
-
 #include <string>
 
 namespace jawmesh {
@@ -33,11 +31,6 @@ struct CommandRegistration {
 
 /// Adds every registered subcommand to app.
 void addRegisteredCommands(CLI::App& app, GlobalOptions& global);
-
-/// Wall seconds since t (the per-step timings commands report).
-inline double secondsSince(std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 /// One line for a command-line error: CLI11's message (it names the option) and where help is.
 std::string usageErrorLine(const CLI::App& app, const CLI::ParseError& error);

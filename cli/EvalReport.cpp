@@ -5,6 +5,7 @@
 #include "io/Error.h"
 #include "io/PngWriter.h"
 #include "io/ReportHtml.h"
+#include "io/ResourceUsage.h"
 
 #include <tbb/parallel_for.h>
 
@@ -125,7 +126,7 @@ nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const Load
         return {{"status", report["verdict"]["status"]},
                 {"line", report["verdict"]["line"]},
                 {"report", "report/report.html"},
-                {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+                {"seconds", secondsSince(start)}};
     } catch (const Error& e) {
         return {{"error", e.what()}};
     }

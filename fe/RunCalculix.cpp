@@ -4,6 +4,7 @@
 #include "fe/CalculixWriter.h"
 #include "io/Error.h"
 #include "io/Labels.h"
+#include "io/ResourceUsage.h"
 
 #include <algorithm>
 #include <chrono>
@@ -72,7 +73,7 @@ CalculixRun runCalculix(const std::string& inpPath, int threads) {
                                 shellQuote(job) + " > " + shellQuote(job + ".log") + " 2>&1";
     const auto start = std::chrono::steady_clock::now();
     const int raw = std::system(command.c_str());
-    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.seconds = secondsSince(start);
     run.exitCode = raw == -1 ? -1 : WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
 
     bool finished = false;

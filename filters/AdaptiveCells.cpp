@@ -4,7 +4,9 @@
 #include "filters/RegionWedges.h"
 #include "filters/SelfIntersections.h"
 #include "filters/TriangleGeometry.h"
+#include "io/Angles.h"
 #include "io/Error.h"
+#include "io/ResourceUsage.h"
 #include "io/VertexTriangles.h"
 
 #include <openvdb/tools/Morphology.h>
@@ -542,7 +544,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
     const double voxelMm = labels.voxelSize()[0];
     const auto near = top > 0 ? blocksNearTeeth(quads, cells, top, voxelMm * double(1 << top), options.boneNearTeethMm)
                               : openvdb::BoolGrid::create(false);
-    const CertifyRule rule{options, top, near->getConstAccessor(), std::cos(options.minAngleDeg * 3.14159265358979323846 / 180.0)};
+    const CertifyRule rule{options, top, near->getConstAccessor(), std::cos(radians(options.minAngleDeg))};
     std::vector<char> dirty(mesh.blocks.size(), 1);
     std::vector<Tri> checked;  // the triangles of the last intersection check, sorted
     // Certify what changed until every block passes; then the exact intersection check of the
@@ -566,7 +568,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
         progress.checkCancelled();
     }
     collectCarried(mesh, cells.size(), out, st);
-    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    st.seconds = secondsSince(start);
     return out;
 }
 

@@ -1,6 +1,7 @@
 #include "filters/PlateThickness.h"
 
 #include "filters/RayTriangle.h"
+#include "io/Angles.h"
 #include "io/VertexTriangles.h"
 
 #include <tbb/parallel_for.h>
@@ -14,7 +15,6 @@
 namespace jawmesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 /// The triangles of one slab in a uniform grid of cell `cell` (sorted (cell key, triangle) pairs).
 class SlabGrid {

@@ -1,5 +1,7 @@
 #include "filters/RegionWedges.h"
 
+#include "io/Angles.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -8,7 +10,6 @@
 namespace jawmesh {
 
 double smallestRegionWedgeDeg(const Vec3& a, const Vec3& b, const EdgeFanTriangle* fan, std::size_t n) {
-    constexpr double kPi = 3.14159265358979323846;
     if (n < 2) return 360;
     const Vec3 d = (b - a).normalized();
     // Angles of the apexes around the edge, in a frame perpendicular to it.

@@ -3,6 +3,8 @@
 #include "filters/NearTeeth.h"
 #include "filters/PlateThickness.h"
 #include "filters/RegionWedges.h"
+#include "io/Angles.h"
+#include "io/ResourceUsage.h"
 
 #include "filters/SelfIntersections.h"
 #include "filters/SplitCorners.h"
@@ -24,7 +26,6 @@
 namespace jawmesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 /// Symmetric 4x4 plane quadric (Garland-Heckbert): sum of w * (n.p + d)^2.
 struct Quadric {
@@ -1225,7 +1226,7 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     const RegionWedgeStats wedges = measureRegionWedges(out, options.minWedgeDeg);
     s.minWedgeDeg = wedges.smallestDeg;
     s.edgesBelowMinWedge = wedges.edgesBelow;
-    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    s.seconds = secondsSince(start);
     return out;
 }
 

@@ -1,5 +1,7 @@
 #include "filters/TriangleGeometry.h"
 
+#include "io/Angles.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -42,7 +44,7 @@ double minAngleDeg(const Vec3& a, const Vec3& b, const Vec3& c) {
         return std::atan2(u.cross(v).norm(), u.dot(v));
     };
     const double m = std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
-    return m * 180.0 / 3.14159265358979323846;
+    return degrees(m);
 }
 
 double smallestAngleCosine(const Vec3& a, const Vec3& b, const Vec3& c) {

@@ -1,5 +1,6 @@
 #include "io/Case.h"
 
+#include "io/Angles.h"
 #include "io/Error.h"
 #include "io/MeshIO.h"
 
@@ -127,7 +128,6 @@ CaseInfo discoverCase(const std::string& caseDir) {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct UnionFind {
     std::vector<std::int32_t> parent;

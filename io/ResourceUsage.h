@@ -1,6 +1,7 @@
 // Process resource figures for reports and benchmarks (run.json, --json outputs).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 
 namespace jawmesh {
@@ -8,6 +9,11 @@ namespace jawmesh {
 /// Peak resident set size of this process so far, bytes (getrusage ru_maxrss); 0 if unavailable.
 /// Cost: one system call.
 std::uint64_t peakResidentMemoryBytes();
+
+/// Wall seconds since `start` (steady clock): how every stage and command times itself.
+inline double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// CPU time of this process so far (user + system, all threads), seconds; 0 if unavailable.
 double processCpuSeconds();

@@ -623,7 +623,7 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
             summary.warnings.push_back(std::to_string(summary.toothBoneContacts) + " tooth voxels touch bone directly (PDL widening under 2 voxels?)");
     }
     lap("measure");
-    summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary.seconds = secondsSince(start);
     return field;
 }
 

@@ -1,6 +1,7 @@
 #include "levelset/MeshToLevelSet.h"
 
 #include "io/Error.h"
+#include "io/ResourceUsage.h"
 #include "levelset/BandDistance.h"
 #include "levelset/LineWinding.h"
 #include "levelset/OrientSurface.h"
@@ -20,7 +21,6 @@ namespace jawmesh {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Maps a sub-range of a stage's fraction, so nested steps report into one bar.
 class SubProgress : public Progress {

@@ -1,5 +1,6 @@
 #include "levelset/PhantomAnatomy.h"
 
+#include "io/Angles.h"
 #include "io/Error.h"
 #include "levelset/PhantomRandom.h"
 
@@ -13,7 +14,6 @@
 namespace jawmesh::phantom {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 constexpr double kOcclusalHalfGapMm = 0.5;  // crowns stop this far from the occlusal plane z = 0
 constexpr double kCrestBelowCejMm = 1.75;   // alveolar crest apical of the crown-root junction

@@ -4,6 +4,7 @@
 #include "filters/PdlThickness.h"
 #include "filters/SurfaceDistance.h"
 #include "filters/WeightedDistribution.h"
+#include "io/ResourceUsage.h"
 #include "tet/ElementQuality.h"
 #include "tet/RegionSurfaces.h"
 #include "tet/ValidateTetMesh.h"
@@ -417,7 +418,7 @@ nlohmann::json evaluateMesh(const TetMesh& mesh, const JawSurfaces* input, const
         report["distance"] = distance;
     }
     report["verdict"] = verdict(report, o);
-    report["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report["seconds"] = secondsSince(start);
     return report;
 }
 

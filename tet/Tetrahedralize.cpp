@@ -4,6 +4,7 @@
 #include "filters/OpenRegionEdges.h"
 #include "filters/SelfIntersections.h"
 #include "io/Error.h"
+#include "io/ResourceUsage.h"
 #include "tet/ElementQuality.h"
 #include "tet/HoleCut.h"
 #include "tet/RefineComplex.h"
@@ -643,7 +644,7 @@ TetMesh tetrahedralize(const InterfaceComplex& input, const TetOptions& options,
         st.refinedEdges += split;
         ++st.refineRounds;
     }
-    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    st.seconds = secondsSince(start);
     st.nodes = best.nodes.size();
     st.tets = best.tets.size();
     st.minDihedralDeg = bestQuality.minDihedralDeg;

@@ -1,6 +1,7 @@
 // Thin plates of a region: the thickness found along vertex normals on closed boxes and prisms
 // whose thickness or angle is known, and what is not a plate (thick boxes, open wedges, the outside).
 #include "filters/PlateThickness.h"
+#include "io/Angles.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +11,6 @@
 namespace jawmesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 /// Builds a closed complex face by face; coincident vertices are merged.
 struct ComplexBuilder {

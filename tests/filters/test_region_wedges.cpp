@@ -1,6 +1,7 @@
 // Region wedges around an edge: which region spans which angle, from the triangles' orientation
 // and sides alone.
 #include "filters/RegionWedges.h"
+#include "io/Angles.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +10,6 @@
 namespace jawmesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 /// Apex at `deg` degrees around the z axis edge (0,0,0)-(0,0,1).
 Vec3 apexAt(double deg) { return {std::cos(deg * kPi / 180), std::sin(deg * kPi / 180), 0.5}; }

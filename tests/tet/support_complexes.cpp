@@ -1,5 +1,7 @@
 #include "tet/TetTestComplexes.h"
 
+#include "support/Icosphere.h"
+
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -118,38 +120,6 @@ std::map<Label, double> complexVolumes(const InterfaceComplex& c) {
 
 namespace {
 
-SurfaceMesh icosphere(const Vec3& centre, double r, int subdivisions) {
-    const double p = (1.0 + std::sqrt(5.0)) / 2.0;
-    SurfaceMesh m;
-    m.vertices = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0}, {0, -1, p}, {0, 1, p},
-                  {0, -1, -p}, {0, 1, -p}, {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
-    m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-    for (auto& v : m.vertices) v.normalize();
-    for (int s = 0; s < subdivisions; ++s) {
-        std::map<std::pair<int, int>, int> mid;
-        auto midpoint = [&](int a, int b) {
-            const auto key = std::minmax(a, b);
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            m.vertices.push_back((m.vertices[static_cast<std::size_t>(a)] + m.vertices[static_cast<std::size_t>(b)]).normalized());
-            return mid[key] = static_cast<int>(m.vertices.size() - 1);
-        };
-        std::vector<Tri> next;
-        for (const Tri& t : m.triangles) {
-            const int a = midpoint(t[0], t[1]), b = midpoint(t[1], t[2]), c = midpoint(t[2], t[0]);
-            next.push_back({t[0], a, c});
-            next.push_back({t[1], b, a});
-            next.push_back({t[2], c, b});
-            next.push_back({a, b, c});
-        }
-        m.triangles = next;
-    }
-    for (auto& v : m.vertices) v = centre + r * v;
-    return m;  // outward (counter-clockwise seen from outside)
-}
-
 SurfaceMesh boxSurface(const Vec3& lo, const Vec3& hi, double spacing) {
     SurfaceMesh m;
     std::map<std::array<long, 3>, int> index;
@@ -206,8 +176,8 @@ InterfaceComplex nestedSpheresComplex(int subdivisions, double boxSpacing) {
     addSurface(c, boxSurface(Vec3(-4, -2.5, -2.5), Vec3(4, 2.5, 2.5), boxSpacing), bone, kOutsideLabel);
     const struct { int unn; double x; } teeth[] = {{24, -1.7}, {25, 1.7}};
     for (const auto& t : teeth) {
-        addSurface(c, icosphere(Vec3(t.x, 0, 0), 1.3, subdivisions), pdlLabel(t.unn), bone);
-        addSurface(c, icosphere(Vec3(t.x, 0, 0), 1.0, subdivisions), toothLabel(t.unn), pdlLabel(t.unn));
+        addSurface(c, test::icosphere(1.3, subdivisions, Vec3(t.x, 0, 0)), pdlLabel(t.unn), bone);
+        addSurface(c, test::icosphere(1.0, subdivisions, Vec3(t.x, 0, 0)), toothLabel(t.unn), pdlLabel(t.unn));
         c.seeds.push_back({Vec3(t.x, 0, 0), toothLabel(t.unn)});
         c.seeds.push_back({Vec3(t.x, 0, 1.15), pdlLabel(t.unn)});
     }
@@ -219,12 +189,12 @@ InterfaceComplex thinPdlComplex(double thicknessMm, int subdivisions) {
     InterfaceComplex c;
     const Label bone = kMandibleBoneLabel;
     addSurface(c, boxSurface(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0.5), bone, kOutsideLabel);
-    SurfaceMesh outer = icosphere(Vec3::Zero(), 1.0 + thicknessMm, subdivisions);
+    SurfaceMesh outer = test::icosphere(1.0 + thicknessMm, subdivisions);
     // turned about an oblique axis: no node of the root faces one of the socket straight on
     const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
     for (Vec3& v : outer.vertices) v = turn * v;
     addSurface(c, outer, pdlLabel(24), bone);
-    addSurface(c, icosphere(Vec3::Zero(), 1.0, subdivisions), toothLabel(24), pdlLabel(24));
+    addSurface(c, test::icosphere(1.0, subdivisions), toothLabel(24), pdlLabel(24));
     c.seeds.push_back({Vec3::Zero(), toothLabel(24)});
     c.seeds.push_back({Vec3(0, 0, 1.0 + 0.5 * thicknessMm), pdlLabel(24)});
     c.seeds.push_back({Vec3(-1.9, -1.9, -1.9), bone});
