@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <utility>
 
@@ -46,7 +47,7 @@ std::pair<double, double> thicknessRangeMm(const std::optional<PdlProfile>& prof
             std::max({profile->cervical, profile->midRoot, profile->apical})};
 }
 
-struct Params {
+struct CarveRules {
     double voxel = 0.05;
     double ratio = 0.5;
     double uniformThickness = 0.2;
@@ -76,10 +77,10 @@ struct ToothWork {
 double heightOf(const ToothWork& t, const Vec3d& world) { return (world - t.origin).dot(t.axis); }
 
 /// PDL thickness at height h (heightOf) on the tooth's axis.
-double thicknessAt(const ToothWork& t, const Params& P, double h) {
-    if (!P.profile || !t.hasRoot) return P.uniformThickness;
+double thicknessAt(const ToothWork& t, const CarveRules& rules, double h) {
+    if (!rules.profile || !t.hasRoot) return rules.uniformThickness;
     const double s = (t.hCervical - h) / std::max(t.hCervical - t.hApex, 1e-6);
-    return pdlThicknessAt(*P.profile, s);
+    return pdlThicknessAt(*rules.profile, s);
 }
 
 /// Share of the root erosion applied at a point: 1 except over the last apexTaper mm to the apex,
@@ -92,20 +93,20 @@ constexpr double kApexErosionShare = 0.5;
 /// Thinnest PDL an overlap of root and bone may leave, as a share of the thickness t (evalLocal).
 constexpr double kMinPdlShare = 0.5;
 
-double erosionShare(const ToothWork& t, const Params& P, double h) {
-    if (!t.hasRoot || P.apexTaper <= 0) return 1.0;
-    const double s = std::clamp((h - t.hApex) / P.apexTaper, 0.0, 1.0);
+double erosionShare(const ToothWork& t, const CarveRules& rules, double h) {
+    if (!t.hasRoot || rules.apexTaper <= 0) return 1.0;
+    const double s = std::clamp((h - t.hApex) / rules.apexTaper, 0.0, 1.0);
     return kApexErosionShare + (1.0 - kApexErosionShare) * s;
 }
 
 /// Signed bone distance: the tooth's extension X (exterior voxels within reach), else the input
 /// band (active voxels are exact even at |value| = background), else "far" outside and the
 /// clamped value inside (deep bone is in the socket anyway).
-inline double signedBone(FloatAcc& B, FloatAcc& X, const Params& P, const Coord& c) {
+inline double signedBone(FloatAcc& B, FloatAcc& X, const CarveRules& rules, const Coord& c) {
     float v;
     if (X.probeValue(c, v)) return v;
     if (B.probeValue(c, v)) return v;  // band: exact, even at |v| = background
-    return v > 0 ? P.far : v;
+    return v > 0 ? rules.far : v;
 }
 
 /// Whether signedBone is a distance at c (X or the band), not a clamp without a direction.
@@ -123,40 +124,40 @@ struct Local {
     double excl = 0;   ///< w - T: positive where bone is excluded by this tooth
 };
 
-Local evalLocal(const ToothWork& t, const Params& P, FloatAcc& T, FloatAcc& X, FloatAcc& B,
+Local evalLocal(const ToothWork& t, const CarveRules& rules, FloatAcc& T, FloatAcc& X, FloatAcc& B,
                 const openvdb::math::Transform& xf, const Coord& c) {
     Local r;
     r.T = T.getValue(c);
-    const double b = signedBone(B, X, P, c);
+    const double b = signedBone(B, X, rules, c);
     const double h = heightOf(t, xf.indexToWorld(c));
-    const double th = thicknessAt(t, P, h);
-    double e = P.ratio * th * erosionShare(t, P, h), w = th - e;
+    const double th = thicknessAt(t, rules, h);
+    double e = rules.ratio * th * erosionShare(t, rules, h), w = th - e;
     const double g = r.T + b;  // root-socket gap where the surfaces face each other (file comment)
-    double gap = g - P.gapBridge;
+    double gap = g - rules.gapBridge;
     if (gap < 0) {
         const Coord dx(1, 0, 0), dy(0, 1, 0), dz(0, 0, 1);
         const Vec3d gT(T.getValue(c + dx) - T.getValue(c - dx), T.getValue(c + dy) - T.getValue(c - dy),
                        T.getValue(c + dz) - T.getValue(c - dz));
-        const Vec3d gB(signedBone(B, X, P, c + dx) - signedBone(B, X, P, c - dx),
-                       signedBone(B, X, P, c + dy) - signedBone(B, X, P, c - dy),
-                       signedBone(B, X, P, c + dz) - signedBone(B, X, P, c - dz));
+        const Vec3d gB(signedBone(B, X, rules, c + dx) - signedBone(B, X, rules, c - dx),
+                       signedBone(B, X, rules, c + dy) - signedBone(B, X, rules, c - dy),
+                       signedBone(B, X, rules, c + dz) - signedBone(B, X, rules, c - dz));
         const double lT = gT.length(), lB = gB.length();
         // A clamped field (outside its band) has no direction: treat as not facing.
         const bool bKnown = boneKnown(B, X, c + dx) && boneKnown(B, X, c - dx) && boneKnown(B, X, c + dy) &&
                             boneKnown(B, X, c - dy) && boneKnown(B, X, c + dz) && boneKnown(B, X, c - dz);
-        const double dot = (bKnown && lT > 1e-3 * P.voxel && lB > 1e-3 * P.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
-        gap = std::max(gap, (dot + kFacingCos) * P.gapBridge);
+        const double dot = (bKnown && lT > 1e-3 * rules.voxel && lB > 1e-3 * rules.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
+        gap = std::max(gap, (dot + kFacingCos) * rules.gapBridge);
         // A bridged gap wider than w + boneShiftMax: the PDL moves out to meet the bone where it
         // has moved boneShiftMax, eroding the root less (and, past that, the PDL thickens).
-        if (gap < 0 && g - w > P.boneShiftMax) {
-            w = g - P.boneShiftMax;
+        if (gap < 0 && g - w > rules.boneShiftMax) {
+            w = g - rules.boneShiftMax;
             e = std::max(0.0, th - w);
         }
         // The root overlapping the bone by more than boneShiftMax - w (g < 0): the bone surface
         // moves boneShiftMax, the PDL thins (down to kMinPdlShare of t, past which the bone
         // moves farther); the root keeps its erosion e.
-        else if (gap < 0 && w - g > P.boneShiftMax)
-            w = std::max(g + P.boneShiftMax, kMinPdlShare * th - e);
+        else if (gap < 0 && w - g > rules.boneShiftMax)
+            w = std::max(g + rules.boneShiftMax, kMinPdlShare * th - e);
     }
     const double socket = std::min(b - e, gap);  // < 0: in the socket of this tooth
     // Exact ties (input bands sampled exactly at T = -e, T = w or on the cap) must land in exactly
@@ -199,19 +200,19 @@ double bisector(int k, const std::vector<int>& cand, Accessors& acc, const Coord
 
 /// Long axis of the tooth and the cervical / apical heights along it, for the thickness profile
 /// and the apex taper of the erosion.
-void fitRootAxis(ToothWork& t, const Params& P, const FloatGrid& bone, const CarveOptions& options) {
+void fitRootAxis(ToothWork& t, const CarveRules& rules, const FloatGrid& bone, const CarveOptions& options) {
     const auto& xf = t.T->transform();
     std::vector<Vec3d> surface;
     std::vector<char> contact;
     auto T = t.T->getConstAccessor();
     auto X = t.X->getConstAccessor();
     auto B = bone.getConstAccessor();
-    const double eCervical = P.ratio * (P.profile ? P.profile->cervical : P.uniformThickness);
+    const double eCervical = rules.ratio * (rules.profile ? rules.profile->cervical : rules.uniformThickness);
     for (auto it = t.T->tree().cbeginValueOn(); it; ++it) {
         const double v = *it;
-        if (v >= 0 || v < -2 * P.voxel) continue;
+        if (v >= 0 || v < -2 * rules.voxel) continue;
         surface.push_back(xf.indexToWorld(it.getCoord()));
-        contact.push_back(signedBone(B, X, P, it.getCoord()) < eCervical + P.voxel);
+        contact.push_back(signedBone(B, X, rules, it.getCoord()) < eCervical + rules.voxel);
     }
     if (surface.empty()) return;
     Vec3d mean(0, 0, 0);
@@ -257,40 +258,40 @@ void fitRootAxis(ToothWork& t, const Params& P, const FloatGrid& bone, const Car
 /// but only where a gap can be: outside both, with T + B < gapBridge, so T < gapBridge and
 /// B < gapBridge + e. There (and only there) both are extended by closest-point propagation
 /// (extendExteriorDistance): B within reach of the tooth, then T where bone is near.
-void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, const Params& P, double exVoxels,
+void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, const CarveRules& rules, double exVoxels,
                   double inVoxels, const CarveOptions& options) {
     FloatGrid::Ptr T;
-    if (bandHalfWidthMm(tooth) >= std::max(exVoxels, inVoxels) * P.voxel - 1e-6)
+    if (bandHalfWidthMm(tooth) >= std::max(exVoxels, inVoxels) * rules.voxel - 1e-6)
         T = tooth.deepCopy();
     else
         T = renormalizeLevelSet(tooth, exVoxels + 1, inVoxels + 1);
     const double bgT = bandHalfWidthMm(*T);
     // Chebyshev dilation of the band by `reach` voxels covers every point with T < gapBridge.
-    const int reach = std::max(0, int(std::ceil((P.gapBridge - bgT) / P.voxel)) + 1);
+    const int reach = std::max(0, int(std::ceil((rules.gapBridge - bgT) / rules.voxel)) + 1);
     openvdb::MaskTree near(T->tree(), false, openvdb::TopologyCopy());
     if (reach > 0)
         openvdb::tools::dilateActiveValues(near, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
     // Bone distances are not needed deeper in the tooth than e (there it is tooth whatever B is).
-    const double eMax = P.ratio * thicknessRangeMm(P.profile, P.uniformThickness).second;
+    const double eMax = rules.ratio * thicknessRangeMm(rules.profile, rules.uniformThickness).second;
     {
-        const float deep = float(-(eMax + P.voxel));
+        const float deep = float(-(eMax + rules.voxel));
         auto ta = T->getConstAccessor();
         for (auto leaf = near.beginLeaf(); leaf; ++leaf)
             for (openvdb::Index i = 0; i < openvdb::MaskTree::LeafNodeType::SIZE; ++i)
                 if (leaf->isValueOn(i) && ta.getValue(leaf->offsetToGlobalCoord(i)) < deep) leaf->setValueOff(i);
     }
-    t.X = extendExteriorDistance(bone, near, P.far);
+    t.X = extendExteriorDistance(bone, near, rules.far);
     t.T = T;
-    fitRootAxis(t, P, bone, options);
+    fitRootAxis(t, rules, bone, options);
     openvdb::MaskTree nearBone(t.X->tree(), false, openvdb::TopologyCopy());
     for (auto leaf = near.cbeginLeaf(); leaf; ++leaf)
         if (const auto* bl = bone.tree().probeConstLeaf(leaf->origin()))
             nearBone.touchLeaf(leaf->origin())->getValueMask() |= bl->getValueMask();
     // Near the apex the socket side widens by what the erosion gives up (erosionShare), past the
     // band: T is needed there whether or not the bone band reaches.
-    if (t.hasRoot && P.apexTaper > 0) {
+    if (t.hasRoot && rules.apexTaper > 0) {
         const auto& xf = T->transform();
-        const double top = t.hApex + P.apexTaper + P.voxel;
+        const double top = t.hApex + rules.apexTaper + rules.voxel;
         for (auto leaf = near.cbeginLeaf(); leaf; ++leaf) {
             openvdb::MaskTree::LeafNodeType* out = nullptr;
             for (auto v = leaf->cbeginValueOn(); v; ++v)
@@ -301,8 +302,8 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
         }
     }
     nearBone.topologyIntersection(near);
-    const auto Tx = extendExteriorDistance(*T, nearBone, P.far);
-    openvdb::tools::changeLevelSetBackground(T->tree(), float(P.far));
+    const auto Tx = extendExteriorDistance(*T, nearBone, rules.far);
+    openvdb::tools::changeLevelSetBackground(T->tree(), float(rules.far));
     auto ta = T->getAccessor();
     for (auto it = Tx->tree().cbeginValueOn(); it; ++it) ta.setValue(it.getCoord(), *it);
     t.box = T->evalActiveVoxelBoundingBox();
@@ -310,8 +311,8 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     // band, and its gradient a voxel farther, but only around band voxels where the overlap
     // (T + B, with B clamped: an upper bound) is already deeper than the least one the rule acts
     // on (boneShiftMax - w, w at most t - e / 2 at the apex), two voxels beyond for the gradient.
-    const auto [tMin, tMax] = thicknessRangeMm(P.profile, P.uniformThickness);
-    const double gTrigger = tMax - kApexErosionShare * P.ratio * tMin - P.boneShiftMax;
+    const auto [tMin, tMax] = thicknessRangeMm(rules.profile, rules.uniformThickness);
+    const double gTrigger = tMax - kApexErosionShare * rules.ratio * tMin - rules.boneShiftMax;
     openvdb::MaskTree overlap(false);
     {
         auto ba = bone.getConstAccessor();
@@ -321,7 +322,7 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     }
     if (overlap.empty()) return;
     openvdb::tools::dilateActiveValues(overlap, 2, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
-    const auto inside = extendInteriorDistance(bone, overlap, P.boneShiftMax + 3 * P.voxel);
+    const auto inside = extendInteriorDistance(bone, overlap, rules.boneShiftMax + 3 * rules.voxel);
     auto xa = t.X->getAccessor();
     for (auto it = inside->tree().cbeginValueOn(); it; ++it) xa.setValue(it.getCoord(), *it);
 }
@@ -350,281 +351,333 @@ void validate(const CarveOptions& o, const FloatGrid& bone, const std::map<int, 
     }
 }
 
+/// What the phases of carveJaw share: the inputs, the rules, the teeth's working fields, the
+/// voxels near teeth and what is built (the field, the summary).
+struct CarveContext {
+    const FloatGrid& bone;
+    const CarveOptions& options;
+    Progress& progress;
+    CarveSummary& summary;
+    CarveRules rules;
+    Label boneL = 0;
+    std::vector<ToothWork> teeth;
+    openvdb::MaskTree nearMask;                    ///< union of the teeth's bands
+    std::unique_ptr<openvdb::Int32Tree> nearLabels;  ///< label of every voxel near a tooth
+    std::unique_ptr<openvdb::FloatTree> nearBone;    ///< carved bone distance there
+    std::unique_ptr<openvdb::tree::LeafManager<openvdb::Int32Tree>> nearLeaves;
+    LabelField field;
+    FloatGrid::Ptr boneOut;  ///< the bone's distance grid, carved near the teeth
+    std::chrono::steady_clock::time_point lastLap;
+
+    CarveContext(const FloatGrid& b, const CarveOptions& o, Progress& pr, CarveSummary& s)
+        : bone(b), options(o), progress(pr), summary(s), lastLap(std::chrono::steady_clock::now()) {}
+    const openvdb::math::Transform& xf() const { return bone.transform(); }
+    /// Records the phase just finished: wall seconds since the last lap, peak memory so far.
+    void lap(const char* name) {
+        const auto now = std::chrono::steady_clock::now();
+        summary.stages.push_back({name, std::chrono::duration<double>(now - lastLap).count(), peakResidentMemoryBytes()});
+        lastLap = now;
+    }
+};
+
+/// The rules' parameters (mm) from the options and the bone's voxel size.
+CarveRules rulesOf(const CarveOptions& options, const FloatGrid& bone) {
+    CarveRules rules;
+    rules.voxel = uniformVoxelSizeMm(bone);
+    rules.ratio = options.pdlRatio;
+    rules.uniformThickness = options.profile ? options.profile->midRoot : options.pdlThicknessMm;
+    rules.profile = options.profile;
+    rules.gapBridge = options.gapBridgeMm;
+    rules.boneShiftMax = options.boneShiftMaxMm;
+    rules.apexTaper = options.apexTaperMm;
+    rules.clearance = options.clearanceVoxels * rules.voxel;
+    const double eMax = rules.ratio * thicknessRangeMm(rules.profile, rules.uniformThickness).second;
+    rules.far = rules.gapBridge + eMax + 2 * rules.voxel;
+    return rules;
+}
+
+/// Phase 1. Per tooth (in parallel): its band, and tooth / bone distances where a gap can be
+/// bridged. The band must hold the PDL rules: e inside, w + clearance outside (for the bisector).
+void prepareTeeth(CarveContext& ctx, const std::map<int, FloatGrid::ConstPtr>& teethIn) {
+    const CarveRules& rules = ctx.rules;
+    const double tMax = thicknessRangeMm(rules.profile, rules.uniformThickness).second;
+    const double eMax = rules.ratio * tMax, wMax = tMax - eMax;
+    const double exVoxels = std::ceil((wMax + rules.clearance) / rules.voxel - 1e-9);
+    const double inVoxels = std::ceil(eMax / rules.voxel - 1e-9);
+    ctx.teeth.resize(teethIn.size());
+    ProgressStage stage(ctx.progress, "carve: tooth bands");
+    std::vector<std::pair<int, FloatGrid::ConstPtr>> in(teethIn.begin(), teethIn.end());
+    std::atomic<int> done{0};
+    tbb::parallel_for(std::size_t(0), in.size(), [&](std::size_t i) {
+        if (ctx.progress.cancelled()) return;
+        ToothWork& t = ctx.teeth[i];
+        t.unn = in[i].first;
+        t.toothL = toothLabel(t.unn);
+        t.pdlL = pdlLabel(t.unn);
+        prepareTooth(t, *in[i].second, ctx.bone, rules, std::max(exVoxels, 1.0), std::max(inVoxels, 1.0), ctx.options);
+        stage.update(double(++done) / double(in.size()));
+    });
+    ctx.progress.checkCancelled();
+}
+
+/// The label of voxel c near the candidate teeth `cand` and its carved bone distance: bone where
+/// the bone field (bridged gaps in, what the teeth exclude out) is negative, unless a tooth and
+/// then a PDL claims it on its side of the bisectors (UNN order breaks exact ties).
+std::pair<Label, double> labelVoxel(const CarveContext& ctx, Accessors& acc, const std::vector<int>& cand,
+                                    std::vector<Local>& loc, const Coord& c) {
+    const CarveRules& rules = ctx.rules;
+    double excl = -std::numeric_limits<double>::infinity();
+    double fill = std::numeric_limits<double>::infinity();
+    float bIn;
+    double bAll = (acc.B.probeValue(c, bIn) || bIn < 0) ? double(bIn) : rules.far;
+    for (int k : cand) {
+        loc[k] = evalLocal(ctx.teeth[k], rules, acc.T[k], acc.X[k], acc.B, ctx.xf(), c);
+        excl = std::max(excl, loc[k].excl);
+        fill = std::min(fill, loc[k].fill);
+        float x;
+        if (acc.X[k].probeValue(c, x)) bAll = std::min(bAll, double(x));
+    }
+    const double b = std::max(std::min(bAll, fill), excl);
+    for (int k : cand)  // teeth first, then PDLs
+        if (std::max(loc[k].tooth, bisector(k, cand, acc, c, rules.clearance)) < 0) return {ctx.teeth[k].toothL, b};
+    for (int k : cand)
+        if (std::max(loc[k].pdl, bisector(k, cand, acc, c, rules.clearance)) < 0) return {ctx.teeth[k].pdlL, b};
+    return {b < 0 ? ctx.boneL : kOutsideLabel, b};
+}
+
+/// Phase 2. Labels and bone distance of every voxel near a tooth, in parallel over leaves.
+void labelVoxelsNearTeeth(CarveContext& ctx) {
+    for (const auto& t : ctx.teeth) ctx.nearMask.topologyUnion(t.T->tree());
+    ctx.nearLabels = std::make_unique<openvdb::Int32Tree>(ctx.nearMask, kOutsideLabel, kOutsideLabel, openvdb::TopologyCopy());
+    const float boneBg = ctx.bone.background();
+    ctx.nearBone = std::make_unique<openvdb::FloatTree>(ctx.nearMask, boneBg, boneBg, openvdb::TopologyCopy());
+    ctx.nearLeaves = std::make_unique<openvdb::tree::LeafManager<openvdb::Int32Tree>>(*ctx.nearLabels);
+    ProgressStage stage(ctx.progress, "carve: label voxels near teeth");
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ctx.nearLeaves->leafCount()), [&](const tbb::blocked_range<std::size_t>& r) {
+        if (ctx.progress.cancelled()) return;
+        Accessors acc(ctx.teeth, ctx.bone);
+        std::vector<Local> loc(ctx.teeth.size());
+        for (std::size_t li = r.begin(); li != r.end(); ++li) {
+            auto& leaf = ctx.nearLeaves->leaf(li);
+            auto* boneLeaf = ctx.nearBone->probeLeaf(leaf.origin());
+            CoordBBox lb = leaf.getNodeBoundingBox();
+            lb.expand(1);
+            const auto cand = candidates(ctx.teeth, lb);
+            for (auto v = leaf.beginValueOn(); v; ++v) {
+                const auto [label, b] = labelVoxel(ctx, acc, cand, loc, v.getCoord());
+                v.setValue(label);
+                boneLeaf->setValueOnly(v.getCoord(), float(std::clamp(b, -double(boneBg), double(boneBg))));
+            }
+        }
+    });
+    ctx.progress.checkCancelled();
+}
+
+/// Phase 3. The label grid: bone interior, tooth interiors, then the voxels near teeth; the bone's
+/// distance grid with the teeth's interiors taken out and the carved values near them.
+void assembleLabels(CarveContext& ctx) {
+    ProgressStage stage(ctx.progress, "carve: assemble labels");
+    LabelField& field = ctx.field;
+    const float boneBg = ctx.bone.background();
+    ctx.boneOut = ctx.bone.deepCopy();
+    ctx.boneOut->setName(labelName(ctx.boneL));
+    const auto boneInside = openvdb::tools::sdfInteriorMask(ctx.bone);
+    field.labels = openvdb::Int32Grid::create(kOutsideLabel);
+    field.labels->setTree(std::make_shared<openvdb::Int32Tree>(boneInside->tree(), kOutsideLabel, ctx.boneL, openvdb::TopologyCopy()));
+    field.labels->setTransform(ctx.xf().copy());
+    field.labels->setName("labels");
+    auto& lt = field.labels->tree();
+    auto& bt = ctx.boneOut->tree();
+    for (const auto& t : ctx.teeth) {
+        ctx.progress.checkCancelled();
+        const auto inside = openvdb::tools::sdfInteriorMask(*t.T);
+        for (auto it = inside->tree().cbeginValueOn(); it; ++it) {
+            if (it.isTileValue()) {
+                lt.fill(it.getBoundingBox(), t.toothL, true);
+                bt.fill(it.getBoundingBox(), boneBg, false);
+            } else if (!ctx.nearMask.isValueOn(it.getCoord())) {
+                lt.setValueOn(it.getCoord(), t.toothL);
+                bt.setValueOff(it.getCoord(), boneBg);
+            }
+        }
+    }
+    for (auto it = ctx.nearLabels->cbeginLeaf(); it; ++it) {
+        auto* L = lt.touchLeaf(it->origin());
+        auto* BL = bt.touchLeaf(it->origin());
+        const auto* nb = ctx.nearBone->probeConstLeaf(it->origin());
+        for (auto v = it->cbeginValueOn(); v; ++v) {
+            const auto off = v.pos();
+            if (*v == kOutsideLabel) L->setValueOff(off, kOutsideLabel);
+            else L->setValueOn(off, *v);
+            BL->setValueOn(off, nb->getValue(off));
+        }
+    }
+}
+
+/// Whether voxel p of tooth `a`'s tooth or PDL gives way to a 26-neighbour of another tooth's
+/// (the one with the smaller margin to the bisector; UNN order on ties); counts a tooth voxel
+/// touching bone in touchesBone.
+bool dropForClearance(const CarveContext& ctx, Accessors& acc, const openvdb::Int32Grid::ConstAccessor& la,
+                      const std::map<Label, int>& ownerOf, const Coord& p, Label l, int a, bool& touchesBone) {
+    const auto& teeth = ctx.teeth;
+    touchesBone = false;
+    for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz) {
+                const Coord q = p.offsetBy(dx, dy, dz);
+                const Label m = la.getValue(q);
+                if (m == ctx.boneL && l == teeth[a].toothL) touchesBone = true;
+                const auto other = ownerOf.find(m);
+                if (other == ownerOf.end() || other->second == a) continue;
+                const int b = other->second;
+                const double marginP = acc.T[b].getValue(p) - acc.T[a].getValue(p);
+                const double marginQ = acc.T[a].getValue(q) - acc.T[b].getValue(q);
+                if (marginP < marginQ || (marginP == marginQ && teeth[a].unn > teeth[b].unn)) return true;
+            }
+    return false;
+}
+
+/// Phase 4. Clearance, discretely: no voxel of one tooth or its PDL 26-touches another tooth's.
+void enforceClearance(CarveContext& ctx) {
+    ProgressStage stage(ctx.progress, "carve: clearance");
+    std::map<Label, int> ownerOf;
+    for (int k = 0; k < int(ctx.teeth.size()); ++k) ownerOf[ctx.teeth[k].toothL] = k, ownerOf[ctx.teeth[k].pdlL] = k;
+    const std::size_t leafCount = ctx.nearLeaves->leafCount();
+    std::vector<std::vector<Coord>> drops(leafCount);
+    std::vector<std::size_t> boneContacts(leafCount, 0);
+    const auto& labels = *ctx.field.labels;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leafCount), [&](const tbb::blocked_range<std::size_t>& r) {
+        Accessors acc(ctx.teeth, ctx.bone);
+        auto la = labels.getConstAccessor();
+        for (std::size_t li = r.begin(); li != r.end(); ++li) {
+            for (auto v = ctx.nearLeaves->leaf(li).cbeginValueOn(); v; ++v) {
+                const Coord p = v.getCoord();
+                const Label l = la.getValue(p);
+                const auto own = ownerOf.find(l);
+                if (own == ownerOf.end()) continue;
+                bool touchesBone = false;
+                if (dropForClearance(ctx, acc, la, ownerOf, p, l, own->second, touchesBone)) drops[li].push_back(p);
+                else if (touchesBone) ++boneContacts[li];
+            }
+        }
+    });
+    auto& lt = ctx.field.labels->tree();
+    for (const auto& d : drops)
+        for (const auto& p : d) lt.setValueOff(p, kOutsideLabel), ++ctx.summary.clearanceVoxelsRemoved;
+    for (auto n : boneContacts) ctx.summary.toothBoneContacts += n;
+}
+
+/// Tooth k's tooth and PDL distance grids on its band, consistent with the labels.
+void toothAndPdlDistances(CarveContext& ctx, int k) {
+    const CarveRules& rules = ctx.rules;
+    const auto& t = ctx.teeth[k];
+    const auto& xf = ctx.xf();
+    auto toothGrid = t.T->deepCopy();
+    auto pdlGrid = FloatGrid::create(t.T->background());
+    pdlGrid->setTree(std::make_shared<openvdb::FloatTree>(t.T->tree(), t.T->background(), t.T->background(), openvdb::TopologyCopy()));
+    pdlGrid->setTransform(xf.copy());
+    openvdb::tree::LeafManager<openvdb::FloatTree> tl(toothGrid->tree());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tl.leafCount()), [&](const tbb::blocked_range<std::size_t>& r) {
+        Accessors acc(ctx.teeth, ctx.bone);
+        auto la = ctx.field.labels->getConstAccessor();
+        for (std::size_t li = r.begin(); li != r.end(); ++li) {
+            auto& leaf = tl.leaf(li);
+            auto* pl = pdlGrid->tree().probeLeaf(leaf.origin());
+            CoordBBox lb = leaf.getNodeBoundingBox();
+            lb.expand(1);
+            const auto cand = candidates(ctx.teeth, lb);
+            for (auto v = leaf.beginValueOn(); v; ++v) {
+                const Coord c = v.getCoord();
+                const Local l = evalLocal(t, rules, acc.T[k], acc.X[k], acc.B, xf, c);
+                const double bis = bisector(k, cand, acc, c, rules.clearance);
+                double tooth = std::max(l.tooth, bis), pdl = std::max(l.pdl, bis);
+                // Voxels dropped by the clearance pass, or won by another tooth on a tie.
+                const Label lab = la.getValue(c);
+                if (tooth < 0 && lab != t.toothL) tooth = 0.5 * rules.voxel;
+                if (pdl < 0 && lab != t.pdlL) pdl = 0.5 * rules.voxel;
+                const double bg = t.T->background();
+                v.setValue(float(std::clamp(tooth, -bg, bg)));
+                pl->setValueOnly(c, float(std::clamp(pdl, -bg, bg)));
+            }
+        }
+    });
+    // Deep interior tiles of this tooth that another tooth won (overlapping inputs).
+    auto ta = toothGrid->getAccessor();
+    auto la = ctx.field.labels->getConstAccessor();
+    for (auto leaf = ctx.nearLabels->cbeginLeaf(); leaf; ++leaf) {
+        if (!t.box.hasOverlap(leaf->getNodeBoundingBox())) continue;
+        for (auto v = leaf->cbeginValueOn(); v; ++v) {
+            const Coord c = v.getCoord();
+            if (!ta.isValueOn(c) && ta.getValue(c) < 0 && la.getValue(c) != t.toothL) ta.setValueOff(c, float(0.5 * rules.voxel));
+        }
+    }
+    toothGrid->setName(labelName(t.toothL));
+    toothGrid->setGridClass(openvdb::GRID_LEVEL_SET);
+    pdlGrid->setName(labelName(t.pdlL));
+    pdlGrid->setGridClass(openvdb::GRID_LEVEL_SET);
+    ctx.field.distances[t.toothL] = toothGrid;
+    ctx.field.distances[t.pdlL] = pdlGrid;
+}
+
+/// Phase 5. Distance grids of every tooth and PDL, and the bone's.
+void regionDistances(CarveContext& ctx) {
+    ProgressStage stage(ctx.progress, "carve: region distances");
+    for (int k = 0; k < int(ctx.teeth.size()); ++k) {
+        ctx.progress.checkCancelled();
+        toothAndPdlDistances(ctx, k);
+    }
+    ctx.field.distances[ctx.boneL] = ctx.boneOut;
+}
+
+/// Phase 6. Measurements per tooth (levelset/CarveMeasure.h) and warnings.
+void measureTeeth(CarveContext& ctx) {
+    ProgressStage stage(ctx.progress, "carve: measure");
+    CarveSummary& summary = ctx.summary;
+    for (const auto& t : ctx.teeth) {
+        ctx.progress.checkCancelled();
+        ToothCarveSummary s;
+        s.unn = t.unn;
+        measureTooth(ctx.field, t.unn, ctx.options.capExclusionMm, s);
+        if (s.pdlVolumeMm3 <= 0)
+            summary.warnings.push_back("tooth " + std::to_string(t.unn) + " has no bone contact: no PDL");
+        else if (s.impacted)
+            summary.warnings.push_back("tooth " + std::to_string(t.unn) + " is fully inside bone: closed PDL envelope");
+        if (ctx.rules.profile && !t.hasRoot)
+            summary.warnings.push_back("tooth " + std::to_string(t.unn) + ": no root found for the thickness profile; uniform mid-root value used");
+        summary.teeth.push_back(s);
+    }
+    if (summary.toothBoneContacts)
+        summary.warnings.push_back(std::to_string(summary.toothBoneContacts) + " tooth voxels touch bone directly (PDL widening under 2 voxels?)");
+}
+
 }  // namespace
 
 LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGrid::ConstPtr>& teethIn,
                     const CarveOptions& options, CarveSummary& summary, Progress& progress) {
     const auto start = std::chrono::steady_clock::now();
     validate(options, bone, teethIn);
-    Params P;
-    P.voxel = uniformVoxelSizeMm(bone);
-    P.ratio = options.pdlRatio;
-    P.uniformThickness = options.profile ? options.profile->midRoot : options.pdlThicknessMm;
-    P.profile = options.profile;
-    P.gapBridge = options.gapBridgeMm;
-    P.boneShiftMax = options.boneShiftMaxMm;
-    P.apexTaper = options.apexTaperMm;
-    P.clearance = options.clearanceVoxels * P.voxel;
-    const double tMax = thicknessRangeMm(P.profile, P.uniformThickness).second;
-    const double eMax = P.ratio * tMax, wMax = tMax - eMax;
-    const auto& xf = bone.transform();
-    const Label boneL = boneLabel(jaw);
     summary = CarveSummary();
-    summary.voxelSizeMm = P.voxel;
-
-    P.far = P.gapBridge + eMax + 2 * P.voxel;
-    auto lap = [&, last = start](const char* name) mutable {
-        const auto now = std::chrono::steady_clock::now();
-        summary.stages.push_back({name, std::chrono::duration<double>(now - last).count(), peakResidentMemoryBytes()});
-        last = now;
-    };
-
-    // 1. Per tooth (in parallel): its band, and tooth / bone distances where a gap can be bridged.
-    // The band must hold the PDL rules: e inside, w + clearance outside (for the bisector).
-    const double exVoxels = std::ceil((wMax + P.clearance) / P.voxel - 1e-9);
-    const double inVoxels = std::ceil(eMax / P.voxel - 1e-9);
-    std::vector<ToothWork> teeth(teethIn.size());
-    {
-        ProgressStage stage(progress, "carve: tooth bands");
-        std::vector<std::pair<int, FloatGrid::ConstPtr>> in(teethIn.begin(), teethIn.end());
-        std::atomic<int> done{0};
-        tbb::parallel_for(std::size_t(0), in.size(), [&](std::size_t i) {
-            if (progress.cancelled()) return;
-            ToothWork& t = teeth[i];
-            t.unn = in[i].first;
-            t.toothL = toothLabel(t.unn);
-            t.pdlL = pdlLabel(t.unn);
-            prepareTooth(t, *in[i].second, bone, P, std::max(exVoxels, 1.0), std::max(inVoxels, 1.0), options);
-            stage.update(double(++done) / double(in.size()));
-        });
-        progress.checkCancelled();
-    }
-    lap("tooth bands");
-
-    // 2. Labels and bone distance of every voxel near a tooth, in parallel over leaves.
-    openvdb::MaskTree nearMask;
-    for (const auto& t : teeth) nearMask.topologyUnion(t.T->tree());
-    openvdb::Int32Tree nearLabels(nearMask, kOutsideLabel, kOutsideLabel, openvdb::TopologyCopy());
-    openvdb::FloatTree nearBone(nearMask, bone.background(), bone.background(), openvdb::TopologyCopy());
-    const float boneBg = bone.background();
-    openvdb::tree::LeafManager<openvdb::Int32Tree> nearLeaves(nearLabels);
-    {
-        ProgressStage stage(progress, "carve: label voxels near teeth");
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nearLeaves.leafCount()), [&](const tbb::blocked_range<std::size_t>& r) {
-            if (progress.cancelled()) return;
-            Accessors acc(teeth, bone);
-            std::vector<Local> loc(teeth.size());
-            for (std::size_t li = r.begin(); li != r.end(); ++li) {
-                auto& leaf = nearLeaves.leaf(li);
-                auto* boneLeaf = nearBone.probeLeaf(leaf.origin());
-                CoordBBox lb = leaf.getNodeBoundingBox();
-                lb.expand(1);
-                const auto cand = candidates(teeth, lb);
-                for (auto v = leaf.beginValueOn(); v; ++v) {
-                    const Coord c = v.getCoord();
-                    double excl = -std::numeric_limits<double>::infinity();
-                    double fill = std::numeric_limits<double>::infinity();
-                    float bIn;
-                    double bAll = (acc.B.probeValue(c, bIn) || bIn < 0) ? double(bIn) : P.far;
-                    for (int k : cand) {
-                        loc[k] = evalLocal(teeth[k], P, acc.T[k], acc.X[k], acc.B, xf, c);
-                        excl = std::max(excl, loc[k].excl);
-                        fill = std::min(fill, loc[k].fill);
-                        float x;
-                        if (acc.X[k].probeValue(c, x)) bAll = std::min(bAll, double(x));
-                    }
-                    const double b = std::max(std::min(bAll, fill), excl);
-                    Label label = b < 0 ? boneL : kOutsideLabel;
-                    bool owned = false;
-                    for (int k : cand) {  // teeth first, then PDLs; UNN order breaks exact ties
-                        const double bis = bisector(k, cand, acc, c, P.clearance);
-                        if (std::max(loc[k].tooth, bis) < 0) { label = teeth[k].toothL; owned = true; break; }
-                    }
-                    if (!owned)
-                        for (int k : cand) {
-                            const double bis = bisector(k, cand, acc, c, P.clearance);
-                            if (std::max(loc[k].pdl, bis) < 0) { label = teeth[k].pdlL; break; }
-                        }
-                    v.setValue(label);
-                    boneLeaf->setValueOnly(c, float(std::clamp(b, -double(boneBg), double(boneBg))));
-                }
-            }
-        });
-        progress.checkCancelled();
-    }
-
-    lap("label voxels near teeth");
-
-    // 3. Assemble the label grid: bone interior, tooth interiors, then the voxels near teeth.
-    LabelField field;
-    field.voxelSizeMm = P.voxel;
-    field.jaw = jaw;
-    auto boneOut = bone.deepCopy();
-    boneOut->setName(labelName(boneL));
-    {
-        ProgressStage stage(progress, "carve: assemble labels");
-        const auto boneInside = openvdb::tools::sdfInteriorMask(bone);
-        field.labels = openvdb::Int32Grid::create(kOutsideLabel);
-        field.labels->setTree(std::make_shared<openvdb::Int32Tree>(boneInside->tree(), kOutsideLabel, boneL, openvdb::TopologyCopy()));
-        field.labels->setTransform(xf.copy());
-        field.labels->setName("labels");
-        auto& lt = field.labels->tree();
-        auto& bt = boneOut->tree();
-        for (const auto& t : teeth) {
-            progress.checkCancelled();
-            const auto inside = openvdb::tools::sdfInteriorMask(*t.T);
-            for (auto it = inside->tree().cbeginValueOn(); it; ++it) {
-                if (it.isTileValue()) {
-                    lt.fill(it.getBoundingBox(), t.toothL, true);
-                    bt.fill(it.getBoundingBox(), boneBg, false);
-                } else if (!nearMask.isValueOn(it.getCoord())) {
-                    lt.setValueOn(it.getCoord(), t.toothL);
-                    bt.setValueOff(it.getCoord(), boneBg);
-                }
-            }
-        }
-        for (auto it = nearLabels.cbeginLeaf(); it; ++it) {
-            auto* L = lt.touchLeaf(it->origin());
-            auto* BL = bt.touchLeaf(it->origin());
-            const auto* nb = nearBone.probeConstLeaf(it->origin());
-            for (auto v = it->cbeginValueOn(); v; ++v) {
-                const auto off = v.pos();
-                if (*v == kOutsideLabel) L->setValueOff(off, kOutsideLabel);
-                else L->setValueOn(off, *v);
-                BL->setValueOn(off, nb->getValue(off));
-            }
-        }
-    }
-
-    lap("assemble labels");
-
-    // 4. Clearance, discretely: no voxel of one tooth or its PDL 26-touches another tooth's.
-    std::map<Label, int> ownerOf;
-    for (int k = 0; k < int(teeth.size()); ++k) ownerOf[teeth[k].toothL] = k, ownerOf[teeth[k].pdlL] = k;
-    std::vector<std::vector<Coord>> drops(nearLeaves.leafCount());
-    std::vector<std::size_t> boneContacts(nearLeaves.leafCount(), 0);
-    {
-        ProgressStage stage(progress, "carve: clearance");
-        const auto& labels = *field.labels;
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nearLeaves.leafCount()), [&](const tbb::blocked_range<std::size_t>& r) {
-            Accessors acc(teeth, bone);
-            auto la = labels.getConstAccessor();
-            for (std::size_t li = r.begin(); li != r.end(); ++li) {
-                for (auto v = nearLeaves.leaf(li).cbeginValueOn(); v; ++v) {
-                    const Coord p = v.getCoord();
-                    const Label l = la.getValue(p);
-                    const auto own = ownerOf.find(l);
-                    if (own == ownerOf.end()) continue;
-                    const int a = own->second;
-                    bool drop = false, touchesBone = false;
-                    for (int dx = -1; dx <= 1 && !drop; ++dx)
-                        for (int dy = -1; dy <= 1 && !drop; ++dy)
-                            for (int dz = -1; dz <= 1 && !drop; ++dz) {
-                                const Coord q = p.offsetBy(dx, dy, dz);
-                                const Label m = la.getValue(q);
-                                if (m == boneL && l == teeth[a].toothL) touchesBone = true;
-                                const auto other = ownerOf.find(m);
-                                if (other == ownerOf.end() || other->second == a) continue;
-                                const int b = other->second;
-                                const double marginP = acc.T[b].getValue(p) - acc.T[a].getValue(p);
-                                const double marginQ = acc.T[a].getValue(q) - acc.T[b].getValue(q);
-                                drop = marginP < marginQ || (marginP == marginQ && teeth[a].unn > teeth[b].unn);
-                            }
-                    if (drop) drops[li].push_back(p);
-                    else if (touchesBone) ++boneContacts[li];
-                }
-            }
-        });
-        auto& lt = field.labels->tree();
-        for (const auto& d : drops)
-            for (const auto& p : d) lt.setValueOff(p, kOutsideLabel), ++summary.clearanceVoxelsRemoved;
-        for (auto n : boneContacts) summary.toothBoneContacts += n;
-    }
-
-    lap("clearance");
-
-    // 5. Distance grids of teeth and PDLs on each tooth's band, consistent with the labels.
-    {
-        ProgressStage stage(progress, "carve: region distances");
-        for (int k = 0; k < int(teeth.size()); ++k) {
-            progress.checkCancelled();
-            const auto& t = teeth[k];
-            auto toothGrid = t.T->deepCopy();
-            auto pdlGrid = FloatGrid::create(t.T->background());
-            pdlGrid->setTree(std::make_shared<openvdb::FloatTree>(t.T->tree(), t.T->background(), t.T->background(), openvdb::TopologyCopy()));
-            pdlGrid->setTransform(xf.copy());
-            openvdb::tree::LeafManager<openvdb::FloatTree> tl(toothGrid->tree());
-            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tl.leafCount()), [&](const tbb::blocked_range<std::size_t>& r) {
-                Accessors acc(teeth, bone);
-                auto la = field.labels->getConstAccessor();
-                for (std::size_t li = r.begin(); li != r.end(); ++li) {
-                    auto& leaf = tl.leaf(li);
-                    auto* pl = pdlGrid->tree().probeLeaf(leaf.origin());
-                    CoordBBox lb = leaf.getNodeBoundingBox();
-                    lb.expand(1);
-                    const auto cand = candidates(teeth, lb);
-                    for (auto v = leaf.beginValueOn(); v; ++v) {
-                        const Coord c = v.getCoord();
-                        const Local l = evalLocal(t, P, acc.T[k], acc.X[k], acc.B, xf, c);
-                        const double bis = bisector(k, cand, acc, c, P.clearance);
-                        double tooth = std::max(l.tooth, bis), pdl = std::max(l.pdl, bis);
-                        // Voxels dropped by the clearance pass, or won by another tooth on a tie.
-                        const Label lab = la.getValue(c);
-                        if (tooth < 0 && lab != t.toothL) tooth = 0.5 * P.voxel;
-                        if (pdl < 0 && lab != t.pdlL) pdl = 0.5 * P.voxel;
-                        const double bg = t.T->background();
-                        v.setValue(float(std::clamp(tooth, -bg, bg)));
-                        pl->setValueOnly(c, float(std::clamp(pdl, -bg, bg)));
-                    }
-                }
-            });
-            // Deep interior tiles of this tooth that another tooth won (overlapping inputs).
-            {
-                auto ta = toothGrid->getAccessor();
-                auto la = field.labels->getConstAccessor();
-                for (auto leaf = nearLabels.cbeginLeaf(); leaf; ++leaf) {
-                    if (!t.box.hasOverlap(leaf->getNodeBoundingBox())) continue;
-                    for (auto v = leaf->cbeginValueOn(); v; ++v) {
-                        const Coord c = v.getCoord();
-                        if (!ta.isValueOn(c) && ta.getValue(c) < 0 && la.getValue(c) != t.toothL)
-                            ta.setValueOff(c, float(0.5 * P.voxel));
-                    }
-                }
-            }
-            toothGrid->setName(labelName(t.toothL));
-            toothGrid->setGridClass(openvdb::GRID_LEVEL_SET);
-            pdlGrid->setName(labelName(t.pdlL));
-            pdlGrid->setGridClass(openvdb::GRID_LEVEL_SET);
-            field.distances[t.toothL] = toothGrid;
-            field.distances[t.pdlL] = pdlGrid;
-        }
-        field.distances[boneL] = boneOut;
-    }
-
-    lap("region distances");
-
-    // 6. Measurements and warnings.
-    {
-        ProgressStage stage(progress, "carve: measure");
-        for (const auto& t : teeth) {
-            progress.checkCancelled();
-            ToothCarveSummary s;
-            s.unn = t.unn;
-            measureTooth(field, t.unn, options.capExclusionMm, s);
-            if (s.pdlVolumeMm3 <= 0)
-                summary.warnings.push_back("tooth " + std::to_string(t.unn) + " has no bone contact: no PDL");
-            else if (s.impacted)
-                summary.warnings.push_back("tooth " + std::to_string(t.unn) + " is fully inside bone: closed PDL envelope");
-            if (P.profile && !t.hasRoot)
-                summary.warnings.push_back("tooth " + std::to_string(t.unn) + ": no root found for the thickness profile; uniform mid-root value used");
-            summary.teeth.push_back(s);
-        }
-        if (summary.toothBoneContacts)
-            summary.warnings.push_back(std::to_string(summary.toothBoneContacts) + " tooth voxels touch bone directly (PDL widening under 2 voxels?)");
-    }
-    lap("measure");
+    CarveContext ctx(bone, options, progress, summary);
+    ctx.lastLap = start;
+    ctx.rules = rulesOf(options, bone);
+    ctx.boneL = boneLabel(jaw);
+    summary.voxelSizeMm = ctx.rules.voxel;
+    ctx.field.voxelSizeMm = ctx.rules.voxel;
+    ctx.field.jaw = jaw;
+    prepareTeeth(ctx, teethIn);
+    ctx.lap("tooth bands");
+    labelVoxelsNearTeeth(ctx);
+    ctx.lap("label voxels near teeth");
+    assembleLabels(ctx);
+    ctx.lap("assemble labels");
+    enforceClearance(ctx);
+    ctx.lap("clearance");
+    regionDistances(ctx);
+    ctx.lap("region distances");
+    measureTeeth(ctx);
+    ctx.lap("measure");
     summary.seconds = secondsSince(start);
-    return field;
+    return std::move(ctx.field);
 }
 
 }  // namespace jawmesh

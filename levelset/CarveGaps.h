@@ -33,6 +33,11 @@
 //    left on diagonals.
 // The distance grid of every region is the corresponding min/max combination of the input fields
 // (exact zero set, true distance away from the creases), so it is consistent with the labels.
+//
+// Where the rules live (CarveGaps.cpp): socket, overlaps, apex, tooth and PDL at one voxel for one
+// tooth in evalLocal; the bisector clearance in bisector. carveJaw runs six phases over one
+// CarveContext: prepareTeeth (bands, gap-bridging extensions, root axis), labelVoxelsNearTeeth,
+// assembleLabels, enforceClearance (the discrete pass), regionDistances, measureTeeth.
 #pragma once
 
 #include "io/Labels.h"
