@@ -175,9 +175,40 @@ std::pair<double, std::size_t> worstAndBad(const TetMesh& mesh, double targetDeg
     return {mesh.tets.empty() ? 0.0 : worst, bad};
 }
 
+/// Progress of one phase of the stage (passes of hill climbing, of lookahead, ...) as the part
+/// [from, to) of its fraction, and the safe points where a cancel is honoured (between tets). How
+/// many passes a phase takes is not known ahead: each pass fills half of what the earlier ones
+/// left, in proportion to the tets it has done.
+class PhaseProgress {
+public:
+    PhaseProgress(ProgressStage& stage, const Progress& progress, double from, double to)
+        : stage_(stage), progress_(progress), from_(from), to_(to) {}
+    /// Runs `step` on every tet of `tets` in order; true when one of them changed something.
+    /// Throws Cancelled between tets when asked to stop.
+    template <typename Step>
+    bool pass(const std::vector<std::int32_t>& tets, Step&& step) {
+        const double begin = 1.0 - std::ldexp(1.0, -passes_), end = 1.0 - std::ldexp(1.0, -(passes_ + 1));
+        ++passes_;
+        bool changed = false;
+        for (std::size_t i = 0; i < tets.size(); ++i) {
+            progress_.checkCancelled();
+            if (i % 64 == 0) stage_.update(from_ + (to_ - from_) * (begin + (end - begin) * double(i) / double(tets.size())));
+            changed |= step(tets[i]);
+        }
+        return changed;
+    }
+
+private:
+    ProgressStage& stage_;
+    const Progress& progress_;
+    double from_, to_;
+    int passes_ = 0;
+};
+
 }  // namespace
 
-void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* stats) {
+void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* stats, Progress& progress) {
+    ProgressStage stage(progress, "improve slivers");
     const auto start = std::chrono::steady_clock::now();
     SliverStats st;
     std::tie(st.minDihedralBeforeDeg, st.badBefore) = worstAndBad(mesh, options.targetMinDihedralDeg);
@@ -185,43 +216,46 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
     if (st.badBefore > 0) {
         TetMeshEditor editor(mesh);
         Improver imp{editor, degToScore(options.targetMinDihedralDeg), options.interfaceInsertions};
+        const auto climb = [&](std::int32_t t) { return improve(imp, t, st); };
         std::vector<std::int32_t> bad = badTets(imp);
+        PhaseProgress climbing(stage, progress, 0.0, 0.4);
         for (int pass = 0; pass < options.maxPasses && !bad.empty(); ++pass) {
             ++st.passes;
-            bool changed = false;
-            for (auto t : bad) changed |= improve(imp, t, st);
+            const bool changed = climbing.pass(bad, climb);
             bad = badTets(imp);
             if (!changed) break;
         }
         // Iterative deepening: depth 2 only where depth 1 is stuck.
-        const auto deepen = [&](int fromDepth, int toDepth) {
+        const auto deepen = [&](int fromDepth, int toDepth, PhaseProgress& phase) {
             for (int depth = fromDepth, pass = 0; depth <= toDepth && pass < options.maxPasses && !bad.empty(); ++pass) {
                 ++st.passes;
-                bool changed = false;
-                for (auto t : bad) changed |= improveWithLookahead(imp, t, depth, st);
+                const bool changed = phase.pass(bad, [&](std::int32_t t) { return improveWithLookahead(imp, t, depth, st); });
                 bad = badTets(imp);
                 if (!changed) ++depth;
             }
         };
-        deepen(1, options.lookaheadDepth);
+        PhaseProgress lookahead(stage, progress, 0.4, 0.8);
+        deepen(1, options.lookaheadDepth, lookahead);
         // The last resort, then the usual operations again around what it moved.
         InterfacePushes pushes;
         if (options.interfacePushMm > 0 && !bad.empty()) {
-            bool changed = false;
+            PhaseProgress pushing(stage, progress, 0.8, 0.9);
             Acceptance accept = Acceptance::improving(imp.target);
-            for (auto t : bad) changed |= pushInterfaceNode(editor, t, options.interfacePushMm, accept, pushes, st);
+            bool changed = pushing.pass(bad, [&](std::int32_t t) {
+                return pushInterfaceNode(editor, t, options.interfacePushMm, accept, pushes, st);
+            });
             for (int pass = 0; changed && pass < options.maxPasses; ++pass) {
                 ++st.passes;
-                changed = false;
-                for (auto t : badTets(imp)) changed |= improve(imp, t, st);
+                changed = pushing.pass(badTets(imp), climb);
             }
             bad = badTets(imp);
         }
         // Deeper lookaheads for the last few, each depth within its count of trials.
+        PhaseProgress deeper(stage, progress, 0.9, 1.0);
         if (options.lookaheadDepth > 0 && bad.size() <= options.deepLookaheadTets)
             for (int depth = options.lookaheadDepth + 1; depth <= options.deepLookaheadDepth && !bad.empty(); ++depth) {
                 imp.trialLimit = imp.trialsMade + options.deepLookaheadTrials;
-                deepen(depth, depth);
+                deepen(depth, depth, deeper);
             }
         editor.finish();
         // Every operation re-triangulates a cavity of one region (or splits an interface in
@@ -235,6 +269,7 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
     std::tie(st.minDihedralAfterDeg, st.badAfter) = worstAndBad(mesh, options.targetMinDihedralDeg);
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (stats) *stats = st;
+    stage.update(1.0);
 }
 
 }  // namespace jawmesh
