@@ -84,10 +84,14 @@ bool improveWithLookahead(Improver& imp, std::int32_t t, int depth, SliverStats&
 void improveAround(Improver& imp, int depth, SliverStats& st) {
     const TetMeshEditor& mesh = imp.mesh;
     for (int round = 0; round < 4; ++round) {
-        const TetMeshEditor::Checkpoint& trial = mesh.innermost();  // not used after the loop below opens others
+        // read before the improvements below open checkpoints of their own (which may move it)
+        const TetMeshEditor::Checkpoint& trial = mesh.innermost();
         std::vector<std::int32_t> nodes;
         for (std::size_t t = trial.firstNewTet; t < mesh.tetCount(); ++t)
-            if (mesh.alive(std::int32_t(t))) nodes.insert(nodes.end(), mesh.tet(std::int32_t(t)).begin(), mesh.tet(std::int32_t(t)).end());
+            if (mesh.alive(std::int32_t(t))) {
+                const Tet& e = mesh.tet(std::int32_t(t));
+                nodes.insert(nodes.end(), e.begin(), e.end());
+            }
         for (const auto& mv : trial.movedNodes) nodes.push_back(mv.first);
         std::sort(nodes.begin(), nodes.end());
         nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());

@@ -3,7 +3,6 @@
 // same search places the node a split or a cavity star inserts (tet/SliverSplits.h, SliverCavity.h).
 #pragma once
 
-#include "io/SurfaceMesh.h"
 #include "tet/ImproveSlivers.h"
 #include "tet/SliverScore.h"
 #include "tet/TetMeshEditor.h"
