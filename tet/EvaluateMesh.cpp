@@ -15,6 +15,8 @@
 #include <cstdio>
 #include <functional>
 #include <set>
+#include <tuple>
+#include <utility>
 
 namespace jawmesh {
 namespace {
@@ -256,38 +258,10 @@ Json verdict(const Json& report, const EvalOptions& o) {
     return {{"status", status}, {"line", line}, {"checks", checks}};
 }
 
-}  // namespace
-
-nlohmann::json evaluateMesh(const TetMesh& mesh, const JawSurfaces* input, const EvalOptions& o, Progress& progress) {
-    const auto start = std::chrono::steady_clock::now();
-    Json report;
-    report["schema"] = "jawmesh-eval/1";
-    report["options"] = {{"sample_spacing_mm", o.sampleSpacingMm}, {"hausdorff_tolerance_mm", o.hausdorffToleranceMm},
-                         {"pdl_target_mm", o.pdlTargetMm},        {"pdl_tolerance_mm", o.pdlToleranceMm},
-                         {"crown_tolerance_mm", o.crownToleranceMm}, {"min_dihedral_deg", o.minDihedralDeg}};
-    report["mesh"] = {{"nodes", mesh.nodes.size()}, {"tets", mesh.tets.size()}};
-
-    std::vector<int> inputTeeth;
-    if (input)
-        for (const auto& [unn, surface] : input->teeth) inputTeeth.push_back(unn);
-    ValidationReport validation;
-    {
-        ProgressStage stage(progress, "eval: validate");
-        validation = validateTetMesh(mesh, inputTeeth);
-    }
-    report["validation"] = toJson(validation);
-    if (validation.badIndices || validation.unknownLabels || validation.sizeMismatch || mesh.tets.empty()) {
-        report["distance"] = nullptr;
-        report["verdict"] = verdict(report, o);
-        return report;
-    }
-
-    // Regions, their boundaries and sizes.
-    std::map<Label, RegionBoundary> boundaries;
-    {
-        ProgressStage stage(progress, "eval: region surfaces");
-        boundaries = regionBoundaries(mesh);
-    }
+/// The "regions" rows (label, name, kind, tets, nodes, volume, surface size) and the "sizes" per kind
+/// (regions, tets, nodes, surface and input surface sizes) of a valid mesh.
+std::pair<Json, Json> regionsAndSizes(const TetMesh& mesh, const JawSurfaces* input, const ValidationReport& validation,
+                                      std::map<Label, RegionBoundary>& boundaries) {
     // Nodes used per label and per kind, as flags over the node array (sets would cost seconds).
     std::map<Label, std::vector<char>> nodeUsed;
     std::map<Label, double> volumeOf;
@@ -337,6 +311,113 @@ nlohmann::json evaluateMesh(const TetMesh& mesh, const JawSurfaces* input, const
         sizes["tooth"]["input_vertices"] = v;
         sizes["tooth"]["input_triangles"] = t;
     }
+    return {regions, sizes};
+}
+
+/// PDL thickness per tooth and over the jaw (the "pdl_thickness" entry).
+Json pdlThicknessReport(const std::map<Label, RegionBoundary>& boundaries, const EvalOptions& o, Progress& progress) {
+    Json teeth = Json::array();
+    std::vector<double> values, weights;
+    for (const auto& [label, boundary] : boundaries) {
+        if (labelKind(label) != LabelKind::Pdl) continue;
+        const Label tooth = toothLabel(labelUnn(label));
+        const SurfaceMesh toothSide = selectTriangles(boundary.surface, [&](std::size_t t) { return boundary.otherSide[t] == tooth; });
+        const SurfaceMesh boneSide = selectTriangles(boundary.surface, [&](std::size_t t) {
+            return boundary.otherSide[t] != kOutsideLabel && labelKind(boundary.otherSide[t]) == LabelKind::Bone;
+        });
+        if (toothSide.triangles.empty() || boneSide.triangles.empty()) continue;
+        const PdlThickness th = pdlThickness(toothSide, boneSide, o.sampleSpacingMm, o.hausdorffToleranceMm, progress);
+        Json row = toJson(th.summary);
+        row["tooth"] = labelUnn(label);
+        teeth.push_back(row);
+        values.insert(values.end(), th.samples.distanceMm.begin(), th.samples.distanceMm.end());
+        weights.insert(weights.end(), th.samples.weightMm2.begin(), th.samples.weightMm2.end());
+    }
+    Json pdl;
+    pdl["target_mm"] = o.pdlTargetMm;
+    pdl["teeth"] = teeth;
+    if (!teeth.empty()) {
+        Json jaw = toJson(summarizeWeighted(values, weights));
+        double maxMm = 0;  // the refined per-tooth maxima bound the jaw's
+        for (const Json& t : teeth) maxMm = std::max(maxMm, t["max"].get<double>());
+        jaw["max"] = maxMm;
+        pdl["jaw"] = jaw;
+        const double hi = std::max(2.0 * o.pdlTargetMm, 1e-3);
+        pdl["histogram"] = {{"lo", 0.0}, {"hi", hi}, {"bins", o.histogramBins}, {"weights_mm2", weightedHistogram(values, weights, 0.0, hi, o.histogramBins)}};
+    }
+    return pdl;
+}
+
+/// Distances from the mesh's region surfaces to the input surfaces, per tooth (crown, root) and for the
+/// bone (outer, socket), with their summary (the "distance" entry).
+Json distanceReport(const JawSurfaces& input, const std::map<Label, RegionBoundary>& boundaries, const EvalOptions& o,
+                    Progress& progress) {
+    Json domains = Json::array();
+    const auto partsOf = [&](const RegionBoundary& b) {
+        std::vector<int> part(b.otherSide.size());
+        for (std::size_t t = 0; t < part.size(); ++t) part[t] = againstPdlOrBone(b.otherSide[t]) ? 1 : 0;  // root : crown
+        return part;
+    };
+    for (const auto& [label, boundary] : boundaries) {
+        progress.checkCancelled();
+        const LabelKind kind = labelKind(label);
+        if (kind == LabelKind::Tooth) {
+            const auto in = input.teeth.find(labelUnn(label));
+            if (in == input.teeth.end() || in->second.triangles.empty()) continue;
+            Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "tooth"}};
+            d["parts"] = twoSidedDistances(boundary.surface, partsOf(boundary), in->second, "crown", "root", o, progress);
+            domains.push_back(d);
+        } else if (kind == LabelKind::Bone && !input.bone.triangles.empty()) {
+            std::vector<int> part(boundary.otherSide.size());
+            for (std::size_t t = 0; t < part.size(); ++t) part[t] = boundary.otherSide[t] == kOutsideLabel ? 0 : 1;
+            Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "bone"}};
+            d["parts"] = twoSidedDistances(boundary.surface, part, input.bone, "outer", "socket", o, progress);
+            domains.push_back(d);
+        }
+    }
+    Json distance;
+    distance["domains"] = domains;
+    distance["summary"] = {{"crowns", aggregateParts(domains, "tooth", "crown")},
+                           {"roots", aggregateParts(domains, "tooth", "root")},
+                           {"bone_outer", aggregateParts(domains, "bone", "outer")},
+                           {"bone_socket", aggregateParts(domains, "bone", "socket")}};
+    return distance;
+}
+
+}  // namespace
+
+nlohmann::json evaluateMesh(const TetMesh& mesh, const JawSurfaces* input, const EvalOptions& o, Progress& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    Json report;
+    report["schema"] = "jawmesh-eval/1";
+    report["options"] = {{"sample_spacing_mm", o.sampleSpacingMm}, {"hausdorff_tolerance_mm", o.hausdorffToleranceMm},
+                         {"pdl_target_mm", o.pdlTargetMm},        {"pdl_tolerance_mm", o.pdlToleranceMm},
+                         {"crown_tolerance_mm", o.crownToleranceMm}, {"min_dihedral_deg", o.minDihedralDeg}};
+    report["mesh"] = {{"nodes", mesh.nodes.size()}, {"tets", mesh.tets.size()}};
+
+    std::vector<int> inputTeeth;
+    if (input)
+        for (const auto& [unn, surface] : input->teeth) inputTeeth.push_back(unn);
+    ValidationReport validation;
+    {
+        ProgressStage stage(progress, "eval: validate");
+        validation = validateTetMesh(mesh, inputTeeth);
+    }
+    report["validation"] = toJson(validation);
+    if (validation.badIndices || validation.unknownLabels || validation.sizeMismatch || mesh.tets.empty()) {
+        report["distance"] = nullptr;
+        report["verdict"] = verdict(report, o);
+        return report;
+    }
+
+    // Regions, their boundaries and sizes.
+    std::map<Label, RegionBoundary> boundaries;
+    {
+        ProgressStage stage(progress, "eval: region surfaces");
+        boundaries = regionBoundaries(mesh);
+    }
+    Json regions, sizes;
+    std::tie(regions, sizes) = regionsAndSizes(mesh, input, validation, boundaries);
 
     {
         ProgressStage stage(progress, "eval: element quality");
@@ -345,39 +426,9 @@ nlohmann::json evaluateMesh(const TetMesh& mesh, const JawSurfaces* input, const
     report["regions"] = regions;
     report["sizes"] = sizes;
 
-    // PDL thickness per tooth and over the jaw.
     {
         ProgressStage stage(progress, "eval: PDL thickness");
-        Json teeth = Json::array();
-        std::vector<double> values, weights;
-        for (const auto& [label, boundary] : boundaries) {
-            if (labelKind(label) != LabelKind::Pdl) continue;
-            const Label tooth = toothLabel(labelUnn(label));
-            const SurfaceMesh toothSide = selectTriangles(boundary.surface, [&](std::size_t t) { return boundary.otherSide[t] == tooth; });
-            const SurfaceMesh boneSide = selectTriangles(boundary.surface, [&](std::size_t t) {
-                return boundary.otherSide[t] != kOutsideLabel && labelKind(boundary.otherSide[t]) == LabelKind::Bone;
-            });
-            if (toothSide.triangles.empty() || boneSide.triangles.empty()) continue;
-            const PdlThickness th = pdlThickness(toothSide, boneSide, o.sampleSpacingMm, o.hausdorffToleranceMm, progress);
-            Json row = toJson(th.summary);
-            row["tooth"] = labelUnn(label);
-            teeth.push_back(row);
-            values.insert(values.end(), th.samples.distanceMm.begin(), th.samples.distanceMm.end());
-            weights.insert(weights.end(), th.samples.weightMm2.begin(), th.samples.weightMm2.end());
-        }
-        Json pdl;
-        pdl["target_mm"] = o.pdlTargetMm;
-        pdl["teeth"] = teeth;
-        if (!teeth.empty()) {
-            Json jaw = toJson(summarizeWeighted(values, weights));
-            double maxMm = 0;  // the refined per-tooth maxima bound the jaw's
-            for (const Json& t : teeth) maxMm = std::max(maxMm, t["max"].get<double>());
-            jaw["max"] = maxMm;
-            pdl["jaw"] = jaw;
-            const double hi = std::max(2.0 * o.pdlTargetMm, 1e-3);
-            pdl["histogram"] = {{"lo", 0.0}, {"hi", hi}, {"bins", o.histogramBins}, {"weights_mm2", weightedHistogram(values, weights, 0.0, hi, o.histogramBins)}};
-        }
-        report["pdl_thickness"] = pdl;
+        report["pdl_thickness"] = pdlThicknessReport(boundaries, o, progress);
     }
 
     // Distances to the input surfaces.
@@ -386,36 +437,7 @@ nlohmann::json evaluateMesh(const TetMesh& mesh, const JawSurfaces* input, const
         report["distance"] = nullptr;
     } else {
         ProgressStage stage(progress, "eval: distance to input");
-        Json domains = Json::array();
-        const auto partsOf = [&](const RegionBoundary& b) {
-            std::vector<int> part(b.otherSide.size());
-            for (std::size_t t = 0; t < part.size(); ++t) part[t] = againstPdlOrBone(b.otherSide[t]) ? 1 : 0;  // root : crown
-            return part;
-        };
-        for (const auto& [label, boundary] : boundaries) {
-            progress.checkCancelled();
-            const LabelKind kind = labelKind(label);
-            if (kind == LabelKind::Tooth) {
-                const auto in = input->teeth.find(labelUnn(label));
-                if (in == input->teeth.end() || in->second.triangles.empty()) continue;
-                Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "tooth"}};
-                d["parts"] = twoSidedDistances(boundary.surface, partsOf(boundary), in->second, "crown", "root", o, progress);
-                domains.push_back(d);
-            } else if (kind == LabelKind::Bone && !input->bone.triangles.empty()) {
-                std::vector<int> part(boundary.otherSide.size());
-                for (std::size_t t = 0; t < part.size(); ++t) part[t] = boundary.otherSide[t] == kOutsideLabel ? 0 : 1;
-                Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "bone"}};
-                d["parts"] = twoSidedDistances(boundary.surface, part, input->bone, "outer", "socket", o, progress);
-                domains.push_back(d);
-            }
-        }
-        Json distance;
-        distance["domains"] = domains;
-        distance["summary"] = {{"crowns", aggregateParts(domains, "tooth", "crown")},
-                               {"roots", aggregateParts(domains, "tooth", "root")},
-                               {"bone_outer", aggregateParts(domains, "bone", "outer")},
-                               {"bone_socket", aggregateParts(domains, "bone", "socket")}};
-        report["distance"] = distance;
+        report["distance"] = distanceReport(*input, boundaries, o, progress);
     }
     report["verdict"] = verdict(report, o);
     report["seconds"] = secondsSince(start);

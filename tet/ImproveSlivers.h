@@ -1,33 +1,11 @@
-// Raises the smallest dihedral angle of a labeled tet mesh by local operations that never move an
+// Sliver improvement of a labeled tet mesh (TetGen's output) by local operations that keep every
 // interface: TetGen with a preserved boundary (-Y) cannot split an interface triangle, so it leaves
 // slivers wedged between two close interfaces (the 0.2 mm PDL) or at inherited thin triangles.
-//
-// Operations, tried in this order on every tet below the target, each made only when it raises
-// the smallest dihedral angle among the tets it changes (hill climbing, Klingner & Shewchuk 2007):
-//  - smoothing: a vertex inside one region (on no interface) moves to where its star's smallest
-//    dihedral angle is largest (pattern search; no star tet may invert);
-//  - flips inside one region: 2-3 (a face whose two tets have the same label) and edge removal
-//    (an edge whose 3..7 tets have the same label and whose ring is closed: the best triangulation
-//    of the ring, Shewchuk 2002; 3 tets = the 3-2 flip), checked by positive orientation and
-//    volume conservation;
-//  - splits: an edge or a face inside one region gets a new vertex, which is then smoothed;
-//  - cavity star: a tet and its same-region neighbours are replaced by the star of a new vertex
-//    over their outer faces (a flat tet on two boundary faces of a ridge needs a vertex above it);
-//  - interface insertion, last: a new vertex on an interface triangle or edge of the tet, with a
-//    cavity starred from it in every region around it (a sliver wedged between two interfaces a
-//    PDL apart, or with all four nodes on interfaces, cannot be mended from inside one region).
-// Where none of these raises a bad tet's neighbourhood any more (a local optimum of the hill
-// climbing), a lookahead makes each candidate of each operation anyway, improves around it as
-// above and keeps the whole only when fewer bad tets are left there; otherwise it is undone.
-// Last, a tet still under the target at an intrinsically thin spot of a region (a lip a few
-// thousandths of a millimetre thick, which no re-triangulation fills with good tets) may have its
-// interface node that lies lowest over its opposite face pushed away from that face, by at most
-// SliverOptions::interfacePushMm: the only operation that moves the surface, within that bound.
-// Otherwise interface vertices never move and labels never change; interface triangles are only
-// split by a vertex on them, so conformity and every region's geometry are kept. Serial and
-// deterministic (tets visited by quality, ties by index).
+// The rule and the order of the operations are on improveSlivers below; the driver (passes,
+// lookahead) is tet/ImproveSlivers.cpp, the operations are tet/Sliver*.h over tet/TetMeshEditor.h.
 #pragma once
 
+#include "io/Progress.h"
 #include "io/TetMesh.h"
 
 #include <cstddef>
@@ -81,11 +59,45 @@ struct SliverStats {
     double seconds = 0;
 };
 
-/// Improves `mesh` in place (tets positively oriented on input and output; labels kept per region;
-/// nodes may be appended, none removed or moved if it lies on an interface or the mesh boundary,
-/// except interface nodes pushed by at most interfacePushMm; interface triangles may be split by
-/// appended nodes on them).
-/// Cost: O(T) to set up plus O(bad tets x star size) per pass.
-void improveSlivers(TetMesh& mesh, const SliverOptions& options = {}, SliverStats* stats = nullptr);
+/// Improves `mesh` in place: works on the tets whose smallest dihedral angle is under
+/// options.targetMinDihedralDeg (tets positively oriented on input and output; labels kept per
+/// region; nodes may be appended, none removed; a node on an interface or the mesh boundary never
+/// moves, except interface nodes pushed by at most interfacePushMm; interface triangles may be
+/// split by appended nodes on them).
+///
+/// Rule (tet/SliverScore.h): a tet scores minus the cosine of its smallest dihedral angle. The tets
+/// an operation would replace and those it would make are each rated by their worst score and their
+/// shortfall (the sum, over tets under the target, of how far under). A candidate is made when it is
+/// Pareto-better: neither the worst score nor the shortfall gets worse and one of them improves, so
+/// an operation may leave the worst tet as it is and only lift others towards the target.
+/// Hill climbing (Klingner & Shewchuk 2007): in passes over the bad tets, worst first, until a pass
+/// changes nothing, each tries these in order and makes the first candidate the rule accepts:
+///  - smoothing (tet/SliverSmooth.h): a node on no interface moves where its star rates best;
+///  - flips inside one region (tet/SliverFlips.h): 2-3, and edge removal of an edge with 3..7 tets
+///    around it (the best triangulation of its ring, Shewchuk 2002; 3 tets = the 3-2 flip);
+///  - splits inside one region (tet/SliverSplits.h): a new node on an edge or a face, then placed;
+///  - cavity star (tet/SliverCavity.h): a new node near the tet starred over a cavity of its region
+///    (a flat tet on two boundary faces of a ridge needs a node above it);
+///  - interface insertion (tet/SliverInterfaceInsert.h, when options.interfaceInsertions): a new
+///    node on an interface triangle or edge of the tet, starred in every region around it.
+/// Lookahead (depth 1..lookaheadDepth, deeper only where shallower is stuck): each candidate of each
+/// operation but smoothing is made whether it helps or not (none flatter than 1 degree), the bad tets
+/// around it are improved as above (with a lookahead one level shallower), and the whole is kept only
+/// when, among the tets it changed, fewer are under the target without a lower worst score, or as
+/// many with a higher worst score or a Pareto-better rating; otherwise it is undone.
+/// Last resort (tet/SliverPush.h): a tet still under the target at an intrinsically thin spot of a
+/// region (a lip a few thousandths of a millimetre thick, which no re-triangulation fills with good
+/// tets) may have an interface node pushed away from its opposite face, then the hill climbing runs
+/// again, then deeper lookaheads when few bad tets are left.
+/// Deterministic: tets are visited by score, ties by index; what runs in parallel (scoring) is
+/// compared in a fixed order, so the result does not depend on the thread count.
+///
+/// `progress` gets the stage "improve slivers" and is polled for cancellation between tets; `stats`,
+/// when given, receives what was done.
+/// Throws Cancelled when cancelled (the mesh is then partly improved and must not be used), and
+/// Error when a region's volume changed beyond what the pushes account for (an internal error).
+/// Cost: O(T) to set up plus O(bad tets x star size) per pass; lookahead passes cost far more.
+void improveSlivers(TetMesh& mesh, const SliverOptions& options = {}, SliverStats* stats = nullptr,
+                    Progress& progress = noProgress());
 
 }  // namespace jawmesh

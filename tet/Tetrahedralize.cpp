@@ -592,7 +592,7 @@ TetMesh tetrahedralize(const InterfaceComplex& input, const TetOptions& options,
             so.targetMinDihedralDeg = options.minDihedralDeg;
             so.lookaheadDepth = options.sliverLookaheadDepth;
             so.interfacePushMm = options.sliverInterfacePushMm;
-            improveSlivers(raw.mesh, so, &slivers);
+            improveSlivers(raw.mesh, so, &slivers, progress);
         }
         const QualityStats q = measureQuality(raw.mesh, options.minDihedralDeg);
         const bool better =

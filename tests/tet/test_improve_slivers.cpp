@@ -11,9 +11,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <random>
 #include <set>
+#include <string>
+#include <vector>
 
 namespace jawmesh {
 namespace {
@@ -265,6 +268,39 @@ TEST(ImproveSlivers, LeavesAGoodMeshAloneAndIsDeterministic) {
     improveSlivers(b);
     EXPECT_EQ(a.tets, b.tets);
     EXPECT_EQ(a.nodes, b.nodes);
+}
+
+/// Records the stages and fractions it is given; cancels after `cancelAfter` polls (never: -1).
+class RecordingProgress : public Progress {
+public:
+    explicit RecordingProgress(int cancelAfter = -1) : cancelAfter_(cancelAfter) {}
+    void begin(const std::string& stage) override { stages.push_back(stage); }
+    void update(double fraction) override { fractions.push_back(fraction); }
+    bool cancelled() const override { return cancelAfter_ >= 0 && polls_++ >= cancelAfter_; }
+    std::vector<std::string> stages;
+    std::vector<double> fractions;
+
+private:
+    int cancelAfter_;
+    mutable int polls_ = 0;
+};
+
+TEST(ImproveSlivers, ReportsProgressWithoutChangingTheResultAndStopsWhenCancelled) {
+    TetMesh quiet = distortedTwoRegionGrid(), reported = distortedTwoRegionGrid();
+    improveSlivers(quiet);
+    RecordingProgress progress;
+    improveSlivers(reported, SliverOptions{}, nullptr, progress);
+    EXPECT_EQ(reported.tets, quiet.tets);
+    EXPECT_EQ(reported.nodes, quiet.nodes);
+    ASSERT_EQ(progress.stages, std::vector<std::string>{"improve slivers"});
+    ASSERT_FALSE(progress.fractions.empty());
+    EXPECT_TRUE(std::is_sorted(progress.fractions.begin(), progress.fractions.end()));
+    EXPECT_GE(progress.fractions.front(), 0.0);
+    EXPECT_EQ(progress.fractions.back(), 1.0);
+
+    TetMesh stopped = distortedTwoRegionGrid();
+    RecordingProgress cancel(3);
+    EXPECT_THROW(improveSlivers(stopped, SliverOptions{}, nullptr, cancel), Cancelled);
 }
 
 }  // namespace
