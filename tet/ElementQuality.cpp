@@ -1,5 +1,7 @@
 #include "tet/ElementQuality.h"
 
+#include "io/Angles.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -8,8 +10,6 @@
 #include <vector>
 
 namespace jawmesh {
-
-double signedTetVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).dot((c - a).cross(d - a)) / 6.0; }
 
 std::map<Label, double> labelVolumesMm3(const TetMesh& mesh) {
     std::map<Label, double> volumes;
@@ -30,7 +30,7 @@ TetShape tetShape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
     // Outward area vectors of the faces opposite each vertex (for det > 0).
     const std::array<Vec3, 4> n = {(c - b).cross(d - b), (d - a).cross(c - a), (b - a).cross(d - a),
                                    (c - a).cross(b - a)};
-    double minAngle = M_PI, maxAngle = 0;
+    double minAngle = kPi, maxAngle = 0;
     for (int k = 0; k < 4; ++k) {
         for (int l = k + 1; l < 4; ++l) {
             const double nn = n[k].norm() * n[l].norm();
@@ -39,7 +39,7 @@ TetShape tetShape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
                 angle = 0;
             } else {
                 const double cosine = std::clamp(n[k].dot(n[l]) / nn, -1.0, 1.0);
-                angle = M_PI - std::acos(cosine);  // interior dihedral at the edge the two faces share
+                angle = kPi - std::acos(cosine);  // interior dihedral at the edge the two faces share
             }
             minAngle = std::min(minAngle, angle);
             maxAngle = std::max(maxAngle, angle);
@@ -47,10 +47,10 @@ TetShape tetShape(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
     }
     if (det == 0) {  // flat: some dihedral is 0 and another 180 whatever the normals say
         minAngle = 0;
-        maxAngle = M_PI;
+        maxAngle = kPi;
     }
-    s.minDihedralDeg = minAngle * 180.0 / M_PI;
-    s.maxDihedralDeg = maxAngle * 180.0 / M_PI;
+    s.minDihedralDeg = minAngle * 180.0 / kPi;
+    s.maxDihedralDeg = maxAngle * 180.0 / kPi;
 
     const double shortest2 = std::min({u.squaredNorm(), v.squaredNorm(), w.squaredNorm(), (c - b).squaredNorm(),
                                        (d - b).squaredNorm(), (d - c).squaredNorm()});

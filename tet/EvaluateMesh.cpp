@@ -1,9 +1,10 @@
 #include "tet/EvaluateMesh.h"
 
-#include "io/Error.h"
 #include "filters/PdlThickness.h"
 #include "filters/SurfaceDistance.h"
 #include "filters/WeightedDistribution.h"
+#include "io/Angles.h"
+#include "io/Error.h"
 #include "io/ResourceUsage.h"
 #include "tet/ElementQuality.h"
 #include "tet/RegionSurfaces.h"
@@ -84,8 +85,8 @@ Json qualityJson(const TetMesh& mesh, const std::vector<TetShape>& shapes, const
     quality["regular_tet"] = {{"radius_ratio", 1.0},
                               {"volume_edge_ratio", 1.0},
                               {"radius_edge_ratio", kRegularRadiusEdgeRatio},
-                              {"min_dihedral_deg", std::acos(1.0 / 3.0) * 180.0 / M_PI},
-                              {"max_dihedral_deg", std::acos(1.0 / 3.0) * 180.0 / M_PI}};
+                              {"min_dihedral_deg", degrees(std::acos(1.0 / 3.0))},
+                              {"max_dihedral_deg", degrees(std::acos(1.0 / 3.0))}};
     std::map<Label, std::vector<std::size_t>> tetsOf;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) tetsOf[mesh.labels[t]].push_back(t);
     for (const Measure& m : kMeasures) {

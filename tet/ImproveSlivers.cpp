@@ -4,6 +4,7 @@
 #include "tet/ImproveSlivers.h"
 
 #include "io/Error.h"
+#include "io/ResourceUsage.h"
 #include "tet/ElementQuality.h"
 #include "tet/SliverCavity.h"
 #include "tet/SliverFlips.h"
@@ -271,7 +272,7 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
                                                   std::to_string(volumesBefore.at(label)) + " to " + std::to_string(volume) + " mm^3");
     }
     std::tie(st.minDihedralAfterDeg, st.badAfter) = worstAndBad(mesh, options.targetMinDihedralDeg);
-    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    st.seconds = secondsSince(start);
     if (stats) *stats = st;
     stage.update(1.0);
 }

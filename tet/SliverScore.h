@@ -3,6 +3,9 @@
 // below the target) and the acceptance rule an operation applies to each candidate it could make.
 #pragma once
 
+#include "tet/ElementQuality.h"
+
+#include "io/Angles.h"
 #include "io/TetMesh.h"
 
 #include <algorithm>
@@ -31,13 +34,10 @@ inline double sliverScore(const Vec3& a, const Vec3& b, const Vec3& c, const Vec
 }
 
 /// The smallest dihedral angle, degrees, of a tet of score s (0 for an invalid tet).
-inline double scoreToDeg(double s) { return s <= kInvalidScore ? 0.0 : std::acos(std::clamp(-s, -1.0, 1.0)) * 180.0 / M_PI; }
+inline double scoreToDeg(double s) { return s <= kInvalidScore ? 0.0 : degrees(std::acos(std::clamp(-s, -1.0, 1.0))); }
 
 /// The score a tet of smallest dihedral angle `deg` has.
-inline double degToScore(double deg) { return -std::cos(deg * M_PI / 180.0); }
-
-/// Six times the signed volume of the tet a, b, c, d (positive when positively oriented).
-inline double signedVolume6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).dot((c - a).cross(d - a)); }
+inline double degToScore(double deg) { return -std::cos(radians(deg)); }
 
 /// What a local operation optimises over the tets it changes: the worst score and the total
 /// shortfall below the target (so a bad tet next to a worse one that no operation can fix is
