@@ -9,6 +9,7 @@
 #include "io/ResourceUsage.h"
 #include "io/StagedFolder.h"
 #include "levelset/CarveGaps.h"
+#include "levelset/JawLevelSets.h"
 #include "levelset/LabelFieldIO.h"
 #include "levelset/MeshToLevelSet.h"
 
@@ -32,40 +33,6 @@ struct CarveCliOptions {
     bool json = false;
     bool memoryCheck = true;
 };
-
-nlohmann::json summaryJson(const CarveSummary& s, const CarveOptions& o) {
-    nlohmann::json teeth = nlohmann::json::array();
-    for (const auto& t : s.teeth) {
-        teeth.push_back({{"unn", t.unn},
-                         {"tooth_volume_mm3", t.toothVolumeMm3},
-                         {"pdl_volume_mm3", t.pdlVolumeMm3},
-                         {"root_area_fraction", t.rootAreaFraction},
-                         {"impacted", t.impacted},
-                         {"thickness_mm",
-                          {{"samples", t.thickness.samples},
-                           {"min", t.thickness.min},
-                           {"p05", t.thickness.p05},
-                           {"mean", t.thickness.mean},
-                           {"p95", t.thickness.p95},
-                           {"max", t.thickness.max}}}});
-    }
-    nlohmann::json options = {{"pdl_thickness_mm", o.pdlThicknessMm},
-                              {"pdl_ratio", o.pdlRatio},
-                              {"clearance_voxels", o.clearanceVoxels},
-                              {"gap_bridge_mm", o.gapBridgeMm},
-                              {"bone_shift_max_mm", o.boneShiftMaxMm},
-                              {"apex_taper_mm", o.apexTaperMm},
-                              {"cap_exclusion_mm", o.capExclusionMm}};
-    if (o.profile)
-        options["pdl_profile_mm"] = {{"cervical", o.profile->cervical}, {"mid_root", o.profile->midRoot}, {"apical", o.profile->apical}};
-    return {{"voxel_mm", s.voxelSizeMm},
-            {"options", options},
-            {"teeth", teeth},
-            {"clearance_voxels_removed", s.clearanceVoxelsRemoved},
-            {"tooth_bone_contacts", s.toothBoneContacts},
-            {"warnings", s.warnings},
-            {"carve_seconds", s.seconds}};
-}
 
 void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     const auto start = std::chrono::steady_clock::now();
@@ -100,7 +67,8 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     StagedFolder staged(opt.output + "/" + jawName(jaw));
     const std::string jawDir = staged.path();
     writeLabelField(field, jawDir + "/levelsets");
-    nlohmann::json j = summaryJson(summary, co);
+    nlohmann::json j = toJson(summary);
+    j["options"] = toJson(co);
     j["case"] = opt.caseDir;
     j["jaw"] = jawName(jaw);
     j["notes"] = surfaces.notes;

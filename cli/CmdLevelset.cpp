@@ -49,22 +49,12 @@ void runLevelset(const LevelsetOptions& opt, const GlobalOptions& global) {
         {"grid", grid->getName()},
         {"voxel_mm", opt.voxelMm},
         {"band_voxels", opt.bandVoxels},
-        {"input_triangles", stats.inputTriangles},
-        {"active_voxels", stats.activeVoxels},
         {"index_bbox", {{"min", coordJson(ib.min())}, {"max", coordJson(ib.max())}}},
         {"world_bbox_mm", {{"min", {wmin.x(), wmin.y(), wmin.z()}}, {"max", {wmax.x(), wmax.y(), wmax.z()}}}},
-        {"repair",
-         {{"dropped_degenerate", stats.droppedDegenerate},
-          {"dropped_duplicate", stats.droppedDuplicate},
-          {"flipped_triangles", stats.flippedTriangles},
-          {"patches", stats.patches},
-          {"nested_patches", stats.nestedPatches}}},
-        {"sign", {{"crossings", stats.crossings}, {"internal_triangles", stats.internalTriangles}, {"fallback_voxels", stats.fallbackVoxels}, {"unresolved_voxels", stats.unresolvedVoxels}}},
-        {"stage_seconds",
-         {{"orient", stats.secondsOrient}, {"unsigned", stats.secondsUnsigned}, {"scanlines", stats.secondsScanlines}, {"sign", stats.secondsSign}}},
         {"seconds", seconds},
         {"peak_memory_bytes", peakResidentMemoryBytes()},
     };
+    j.update(toJson(stats));
     std::cout << j.dump() << std::endl;
 }
 

@@ -12,9 +12,8 @@
 #include "io/AtomicFile.h"
 #include "io/StagedFolder.h"
 #include "io/VtuWriter.h"
-#include "levelset/InsideOverlap.h"
+#include "levelset/JawLevelSets.h"
 #include "levelset/LabelFieldIO.h"
-#include "levelset/MeshToLevelSet.h"
 #include "tet/ElementQuality.h"
 #include "tet/RegionSurfaces.h"
 #include "tet/ValidateTetMesh.h"
@@ -70,53 +69,6 @@ std::vector<int> teethInField(const LabelField& field) {
 }
 
 }  // namespace
-
-std::string toothSource(const JawCase& jawCase, int unn) {
-    const auto file = jawCase.toothPaths.find(unn);
-    if (file != jawCase.toothPaths.end()) return file->second;
-    return jawCase.allTeethPath + " (tooth " + std::to_string(unn) + ")";
-}
-
-JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double bandVoxels,
-                          Progress& progress) {
-    auto levelSet = [&](const SurfaceMesh& mesh, Label label, const std::string& source) {
-        try {
-            openvdb::FloatGrid::Ptr grid = meshToLevelSet(mesh, voxelMm, bandVoxels, progress);
-            grid->setName(labelName(label));
-            return grid;
-        } catch (const Error& e) {
-            throw Error(source, e.reason());
-        }
-    };
-    JawLevelSets sets;
-    sets.bone = levelSet(surfaces.bone, boneLabel(surfaces.jaw), jawCase.bonePath);
-    for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = levelSet(mesh, toothLabel(unn), toothSource(jawCase, unn));
-    // Teeth in contact overlap a little and the carving splits them; a large shared volume is a
-    // segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.
-    for (auto a = sets.teeth.begin(); a != sets.teeth.end(); ++a)
-        for (auto b = std::next(a); b != sets.teeth.end(); ++b) {
-            progress.checkCancelled();
-            const double shared = insideOverlapFraction(*a->second, *b->second);
-            if (shared > kHeavyToothOverlapFraction)
-                throw Error(toothSource(jawCase, b->first),
-                            "overlaps " + toothSource(jawCase, a->first) + " by " +
-                                std::to_string(static_cast<int>(shared * 100 + 0.5)) +
-                                "% of the smaller tooth's volume: the same tooth exported twice, or two teeth "
-                                "segmented into each other? Fix the segmentation.");
-        }
-    return sets;
-}
-
-void requireBoneContact(const CarveSummary& summary, const JawCase& jawCase, const CarveOptions& options) {
-    for (const ToothCarveSummary& t : summary.teeth)
-        if (t.pdlVolumeMm3 <= 0) {
-            std::ostringstream reason;
-            reason << "tooth " << t.unn << " does not reach the bone (no root surface within the "
-                   << options.gapBridgeMm << " mm gap bridge of a socket), so it gets no PDL; is the file in the "
-                   << "bone's coordinate frame and of this jaw?";
-            throw Error(toothSource(jawCase, t.unn), reason.str());
-        }
-}
 
 nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const std::string& outJawDir,
                       Progress& progress) {
@@ -175,12 +127,8 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     complex = log.run(jaw + ": simplify surface", progress,
                       [&] { return simplifyInterfaces(complex, options.simplify, progress, &simplifyStats); });
     record["surface"] = {{"vertices", complex.surface.vertices.size()}, {"triangles", complex.surface.triangles.size()},
-                         {"seeds", complex.seeds.size()}, {"simplify", toJson(simplifyStats)},
-                         {"enclosed_outside_pockets_filled",
-                          {{"pockets", extractStats.pocketsFilled}, {"voxels", extractStats.pocketVoxelsFilled}}},
-                         {"region_fragments_absorbed",
-                          {{"fragments", extractStats.fragmentsAbsorbed}, {"voxels", extractStats.fragmentVoxelsAbsorbed}}},
-                         {"adaptive", toJson(extractStats.adaptive)}};
+                         {"seeds", complex.seeds.size()}, {"simplify", toJson(simplifyStats)}};
+    record["surface"].update(toJson(extractStats));
 
     TetStats tetStats;
     TetMesh mesh = log.run(jaw + ": tetrahedralize", progress, [&] {
@@ -194,22 +142,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
             throw Error(std::string(e.what()) + " (the interface surface is in " + poly + ")");
         }
     });
-    const SliverStats& sl = tetStats.slivers;
-    nlohmann::json holes = nlohmann::json::array();
-    for (const FilledHole& h : tetStats.holeRepair.filled)
-        holes.push_back({{"between", {labelName(h.pair[0]), labelName(h.pair[1])}},
-                         {"boundary_edges", h.boundaryEdges},
-                         {"diameter_mm", h.diameterMm},
-                         {"centre_mm", {h.centre.x(), h.centre.y(), h.centre.z()}},
-                         {"triangles", h.triangles},
-                         {"repair", holeRepairName(h.how)}});
-    record["tetgen"] = {{"hole_repair",
-                         {{"holes_filled", tetStats.holeRepair.filled.size()},
-                          {"triangles_added", tetStats.holeRepair.trianglesAdded()},
-                          {"vertices_added", tetStats.holeRepair.verticesAdded()},
-                          {"triangles_removed", tetStats.holeRepair.trianglesRemoved()},
-                          {"largest_hole_mm", tetStats.holeRepair.largestHoleMm()},
-                          {"holes", holes}}},
+    record["tetgen"] = {{"hole_repair", toJson(tetStats.holeRepair)},
                         {"switches", tetStats.switches},
                         {"attempts", tetStats.attempts},
                         {"failed_attempts", tetStats.failedAttempts},
@@ -217,33 +150,13 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
                         {"refined_edges", tetStats.refinedEdges},
                         {"refinement_child_peak_memory_bytes", tetStats.childPeakMemoryBytes},
                         {"seconds", tetStats.seconds},
-                        {"sliver_improvement",
-                         {{"below_target_before", sl.badBefore},
-                          {"below_target_after", sl.badAfter},
-                          {"min_dihedral_before_deg", sl.minDihedralBeforeDeg},
-                          {"min_dihedral_after_deg", sl.minDihedralAfterDeg},
-                          {"smoothed", sl.smoothed},
-                          {"flips23", sl.flips23},
-                          {"flips32", sl.flips32},
-                          {"splits", sl.splits},
-                          {"face_splits", sl.faceSplits},
-                          {"cavity_stars", sl.cavityStars},
-                          {"interface_insertions", sl.interfaceInsertions},
-                          {"edge_removals", sl.edgeRemovals},
-                          {"lookaheads", sl.lookaheads},
-                          {"interface_pushes", sl.interfacePushes},
-                          {"largest_push_mm", sl.largestPushMm},
-                          {"passes", sl.passes},
-                          {"seconds", sl.seconds}}}};
+                        {"sliver_improvement", toJson(tetStats.slivers)}};
 
     const ValidationReport report =
         log.run(jaw + ": validate", progress, [&] { return requireValid(mesh, teeth); });
     const QualityStats quality = measureQuality(mesh, options.tet.minDihedralDeg);
     record["validation"] = toJson(report);
-    record["quality"] = {{"min_dihedral_deg", quality.minDihedralDeg},
-                         {"max_dihedral_deg", quality.maxDihedralDeg},
-                         {"max_radius_edge", quality.maxRadiusEdge},
-                         {"tets_below_min_dihedral", quality.belowDihedralThreshold}};
+    record["quality"] = toJson(quality);
     record["mesh"] = {{"nodes", mesh.nodes.size()}, {"tets", mesh.tets.size()}};
 
     log.run(jaw + ": write", progress, [&] {

@@ -14,28 +14,6 @@
 
 namespace jawmesh {
 
-/// The input level sets of one jaw, grids named after their labels.
-struct JawLevelSets {
-    openvdb::FloatGrid::Ptr bone;
-    std::map<int, openvdb::FloatGrid::ConstPtr> teeth;  ///< by UNN
-};
-
-/// meshToLevelSet of the bone and every tooth of `surfaces` (read from `jawCase`). Throws Error
-/// naming the input file for a surface that cannot become a level set (e.g. only degenerate
-/// triangles: a point cloud) and for two teeth sharing more than 30% of the smaller one's volume
-/// (levelset/InsideOverlap.h: a tooth exported twice, teeth merged). Throws Cancelled.
-JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double bandVoxels,
-                          Progress& progress = noProgress());
-
-/// The input file of tooth `unn` of a jaw case, for messages ("<all_teeth.obj> (tooth 24)" when
-/// the teeth came from one file).
-std::string toothSource(const JawCase& jawCase, int unn);
-
-/// Throws Error naming the tooth's file when a carved tooth got no PDL: it does not reach the bone
-/// (a tooth in another coordinate frame, of the other jaw, or far from its socket). runJaw calls it
-/// after carving, before the long surface and TetGen stages that would end in a missing PDL.
-void requireBoneContact(const CarveSummary& summary, const JawCase& jawCase, const CarveOptions& options);
-
 /// Runs every stage for one jaw and writes <outJawDir>/{volumetric_meshes,surface_meshes,levelsets}
 /// and <outJawDir>/run.json. The mesh is validated before anything of it is written; a violation is
 /// an Error. Returns the run record written to run.json.

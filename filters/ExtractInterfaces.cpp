@@ -195,4 +195,10 @@ InterfaceComplex extractInterfaces(LabelField&& field, const ExtractOptions& opt
     return out;
 }
 
+nlohmann::json toJson(const ExtractStats& stats) {
+    return {{"enclosed_outside_pockets_filled", {{"pockets", stats.pocketsFilled}, {"voxels", stats.pocketVoxelsFilled}}},
+            {"region_fragments_absorbed", {{"fragments", stats.fragmentsAbsorbed}, {"voxels", stats.fragmentVoxelsAbsorbed}}},
+            {"adaptive", toJson(stats.adaptive)}};
+}
+
 }  // namespace jawmesh

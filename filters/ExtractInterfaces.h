@@ -21,6 +21,8 @@
 #include "io/Progress.h"
 #include "levelset/LabelField.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstddef>
 
 namespace jawmesh {
@@ -53,6 +55,10 @@ struct ExtractStats {
     std::size_t fragmentVoxelsAbsorbed = 0;
     AdaptiveStats adaptive;              ///< the adaptive extraction (AdaptiveCells.h)
 };
+
+/// As run.json's "surface" records it: enclosed_outside_pockets_filled {pockets, voxels},
+/// region_fragments_absorbed {fragments, voxels} and adaptive (AdaptiveCells.h).
+nlohmann::json toJson(const ExtractStats& stats);
 
 /// The labels extraction meshes: a copy of field.labels with diagonal-only contacts repaired
 /// (WellComposedLabels.h) and small enclosed outside pockets and region fragments absorbed

@@ -4,6 +4,7 @@
 #include "filters/HoleLoops.h"
 #include "filters/SelfIntersections.h"
 #include "filters/TriangulateLoop.h"
+#include "io/Labels.h"
 
 #include <algorithm>
 #include <map>
@@ -205,6 +206,23 @@ HoleFillStats fillSurfaceHoles(InterfaceComplex& complex) {
     }
     if (stats.trianglesRemoved() > 0) dropTriangles(complex, removed);
     return stats;
+}
+
+nlohmann::json toJson(const HoleFillStats& stats) {
+    nlohmann::json holes = nlohmann::json::array();
+    for (const FilledHole& h : stats.filled)
+        holes.push_back({{"between", {labelName(h.pair[0]), labelName(h.pair[1])}},
+                         {"boundary_edges", h.boundaryEdges},
+                         {"diameter_mm", h.diameterMm},
+                         {"centre_mm", {h.centre.x(), h.centre.y(), h.centre.z()}},
+                         {"triangles", h.triangles},
+                         {"repair", holeRepairName(h.how)}});
+    return {{"holes_filled", stats.filled.size()},
+            {"triangles_added", stats.trianglesAdded()},
+            {"vertices_added", stats.verticesAdded()},
+            {"triangles_removed", stats.trianglesRemoved()},
+            {"largest_hole_mm", stats.largestHoleMm()},
+            {"holes", holes}};
 }
 
 }  // namespace jawmesh

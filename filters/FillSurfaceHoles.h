@@ -6,6 +6,8 @@
 
 #include "io/InterfaceComplex.h"
 
+#include <nlohmann/json.hpp>
+
 #include <array>
 #include <vector>
 
@@ -40,6 +42,10 @@ struct HoleFillStats {
     std::size_t verticesAdded() const;     ///< fan apexes
     double largestHoleMm() const;
 };
+
+/// As run.json's tetgen.hole_repair records it: the totals and every patch (label pair, boundary
+/// edges, diameter and centre in mm, triangles, how it was closed).
+nlohmann::json toJson(const HoleFillStats& stats);
 
 /// Closes every hole it can, in place. Per loop: when the loop is the rim of a lid (a piece of the
 /// sheet bounded only by open edges, within the loop: filters/HoleFlap.h) the lid is taken out;

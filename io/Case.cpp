@@ -444,4 +444,10 @@ JawSurfaces loadJaw(const JawCase& jc, const LoadOptions& options, Progress& pro
     return out;
 }
 
+std::string toothSource(const JawCase& jawCase, int unn) {
+    const auto file = jawCase.toothPaths.find(unn);
+    if (file != jawCase.toothPaths.end()) return file->second;
+    return jawCase.allTeethPath + " (tooth " + std::to_string(unn) + ")";
+}
+
 }  // namespace jawmesh

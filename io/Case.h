@@ -87,4 +87,8 @@ JawSurfaces loadJaw(const JawCase& jawCase, const LoadOptions& options = {}, Pro
 std::map<int, SurfaceMesh> numberTeethAlongArch(const SurfaceMesh& allTeeth, Jaw jaw, const SurfaceMesh& bone,
                                                 std::vector<std::string>* notes = nullptr);
 
+/// The input file of tooth `unn` of a jaw case, for messages ("<all_teeth.obj> (tooth 24)" when
+/// the teeth came from one file).
+std::string toothSource(const JawCase& jawCase, int unn);
+
 }  // namespace jawmesh

@@ -680,4 +680,52 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
     return std::move(ctx.field);
 }
 
+nlohmann::json toJson(const CarveOptions& o) {
+    nlohmann::json j = {{"pdl_thickness_mm", o.pdlThicknessMm},
+                        {"pdl_ratio", o.pdlRatio},
+                        {"clearance_voxels", o.clearanceVoxels},
+                        {"gap_bridge_mm", o.gapBridgeMm},
+                        {"bone_shift_max_mm", o.boneShiftMaxMm},
+                        {"apex_taper_mm", o.apexTaperMm},
+                        {"cap_exclusion_mm", o.capExclusionMm}};
+    if (o.profile)
+        j["pdl_profile_mm"] = {{"cervical", o.profile->cervical}, {"mid_root", o.profile->midRoot}, {"apical", o.profile->apical}};
+    return j;
+}
+
+nlohmann::json toJson(const CarveSummary& s) {
+    nlohmann::json teeth = nlohmann::json::array();
+    for (const auto& t : s.teeth) {
+        teeth.push_back({{"unn", t.unn},
+                         {"tooth_volume_mm3", t.toothVolumeMm3},
+                         {"pdl_volume_mm3", t.pdlVolumeMm3},
+                         {"root_area_fraction", t.rootAreaFraction},
+                         {"impacted", t.impacted},
+                         {"thickness_mm",
+                          {{"samples", t.thickness.samples},
+                           {"min", t.thickness.min},
+                           {"p05", t.thickness.p05},
+                           {"mean", t.thickness.mean},
+                           {"p95", t.thickness.p95},
+                           {"max", t.thickness.max}}}});
+    }
+    return {{"voxel_mm", s.voxelSizeMm},
+            {"teeth", teeth},
+            {"clearance_voxels_removed", s.clearanceVoxelsRemoved},
+            {"tooth_bone_contacts", s.toothBoneContacts},
+            {"warnings", s.warnings},
+            {"carve_seconds", s.seconds}};
+}
+
+void requireBoneContact(const CarveSummary& summary, const JawCase& jawCase, const CarveOptions& options) {
+    for (const ToothCarveSummary& t : summary.teeth)
+        if (t.pdlVolumeMm3 <= 0) {
+            std::ostringstream reason;
+            reason << "tooth " << t.unn << " does not reach the bone (no root surface within the "
+                   << options.gapBridgeMm << " mm gap bridge of a socket), so it gets no PDL; is the file in the "
+                   << "bone's coordinate frame and of this jaw?";
+            throw Error(toothSource(jawCase, t.unn), reason.str());
+        }
+}
+
 }  // namespace jawmesh

@@ -40,11 +40,13 @@
 // assembleLabels, enforceClearance (the discrete pass), regionDistances, measureTeeth.
 #pragma once
 
+#include "io/Case.h"
 #include "io/Labels.h"
 #include "io/Progress.h"
 #include "io/ToothAxes.h"
 #include "levelset/LabelField.h"
 
+#include <nlohmann/json.hpp>
 #include <openvdb/openvdb.h>
 
 #include <cstdint>
@@ -126,5 +128,17 @@ LabelField carveJaw(Jaw jaw, const openvdb::FloatGrid& bone,
 
 /// PDL thickness (mm) at relative root position s (0 cervical, 0.5 mid-root, 1 apex), clamped.
 double pdlThicknessAt(const PdlProfile& profile, double s);
+
+/// The options as summary.json records them (mm, voxels).
+nlohmann::json toJson(const CarveOptions& options);
+
+/// Per-tooth measurements (volumes mm^3, thickness statistics mm), clearance, contacts, warnings
+/// and carve_seconds, as summary.json records them.
+nlohmann::json toJson(const CarveSummary& summary);
+
+/// Throws Error naming the tooth's file when a carved tooth got no PDL: it does not reach the bone
+/// (a tooth in another coordinate frame, of the other jaw, or far from its socket). runJaw calls it
+/// after carving, before the long surface and TetGen stages that would end in a missing PDL.
+void requireBoneContact(const CarveSummary& summary, const JawCase& jawCase, const CarveOptions& options);
 
 }  // namespace jawmesh

@@ -275,4 +275,25 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
     return grid;
 }
 
+nlohmann::json toJson(const MeshToLevelSetStats& stats) {
+    return {{"input_triangles", stats.inputTriangles},
+            {"active_voxels", stats.activeVoxels},
+            {"repair",
+             {{"dropped_degenerate", stats.droppedDegenerate},
+              {"dropped_duplicate", stats.droppedDuplicate},
+              {"flipped_triangles", stats.flippedTriangles},
+              {"patches", stats.patches},
+              {"nested_patches", stats.nestedPatches}}},
+            {"sign",
+             {{"crossings", stats.crossings},
+              {"internal_triangles", stats.internalTriangles},
+              {"fallback_voxels", stats.fallbackVoxels},
+              {"unresolved_voxels", stats.unresolvedVoxels}}},
+            {"stage_seconds",
+             {{"orient", stats.secondsOrient},
+              {"unsigned", stats.secondsUnsigned},
+              {"scanlines", stats.secondsScanlines},
+              {"sign", stats.secondsSign}}}};
+}
+
 }  // namespace jawmesh

@@ -14,6 +14,7 @@
 #include "io/Progress.h"
 #include "io/SurfaceMesh.h"
 
+#include <nlohmann/json.hpp>
 #include <openvdb/openvdb.h>
 
 #include <cstddef>
@@ -36,6 +37,11 @@ struct MeshToLevelSetStats {
                                          ///< shells): the distance ignores them when >= 16
     double secondsOrient = 0, secondsUnsigned = 0, secondsScanlines = 0, secondsSign = 0;
 };
+
+/// The stats as `jawmesh levelset --json` reports them: input_triangles, active_voxels, repair
+/// {dropped_degenerate, dropped_duplicate, flipped_triangles, patches, nested_patches}, sign
+/// {crossings, internal_triangles, fallback_voxels, unresolved_voxels} and stage_seconds.
+nlohmann::json toJson(const MeshToLevelSetStats& stats);
 
 /// Narrow-band signed distance (mm, negative inside, GRID_LEVEL_SET class, background =
 /// halfWidthVoxels * voxelSizeMm) on openvdb::math::Transform::createLinearTransform(voxelSizeMm)

@@ -119,4 +119,11 @@ QualityStats measureQuality(const TetMesh& mesh, double dihedralThresholdDeg) {
     return q;
 }
 
+nlohmann::json toJson(const QualityStats& q) {
+    return {{"min_dihedral_deg", q.minDihedralDeg},
+            {"max_dihedral_deg", q.maxDihedralDeg},
+            {"max_radius_edge", q.maxRadiusEdge},
+            {"tets_below_min_dihedral", q.belowDihedralThreshold}};
+}
+
 }  // namespace jawmesh

@@ -4,6 +4,8 @@
 
 #include "io/TetMesh.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -59,5 +61,9 @@ struct QualityStats {
 /// belowDihedralThreshold counts. Cost: O(T), TBB-parallel; result independent of thread count
 /// (ties for worstTet go to the lowest index; the mean is summed in a fixed order).
 QualityStats measureQuality(const TetMesh& mesh, double dihedralThresholdDeg = 10.0);
+
+/// As run.json's "quality" records it: min_dihedral_deg, max_dihedral_deg, max_radius_edge and
+/// tets_below_min_dihedral (the threshold measureQuality was given).
+nlohmann::json toJson(const QualityStats& stats);
 
 }  // namespace jawmesh

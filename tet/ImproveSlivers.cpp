@@ -277,4 +277,24 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
     stage.update(1.0);
 }
 
+nlohmann::json toJson(const SliverStats& sl) {
+    return {{"below_target_before", sl.badBefore},
+            {"below_target_after", sl.badAfter},
+            {"min_dihedral_before_deg", sl.minDihedralBeforeDeg},
+            {"min_dihedral_after_deg", sl.minDihedralAfterDeg},
+            {"smoothed", sl.smoothed},
+            {"flips23", sl.flips23},
+            {"flips32", sl.flips32},
+            {"splits", sl.splits},
+            {"face_splits", sl.faceSplits},
+            {"cavity_stars", sl.cavityStars},
+            {"interface_insertions", sl.interfaceInsertions},
+            {"edge_removals", sl.edgeRemovals},
+            {"lookaheads", sl.lookaheads},
+            {"interface_pushes", sl.interfacePushes},
+            {"largest_push_mm", sl.largestPushMm},
+            {"passes", sl.passes},
+            {"seconds", sl.seconds}};
+}
+
 }  // namespace jawmesh

@@ -8,6 +8,8 @@
 #include "io/Progress.h"
 #include "io/TetMesh.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstddef>
 
 namespace jawmesh {
@@ -58,6 +60,9 @@ struct SliverStats {
     int passes = 0;
     double seconds = 0;
 };
+
+/// As run.json's tetgen.sliver_improvement records it (counts, angles in degrees, seconds).
+nlohmann::json toJson(const SliverStats& stats);
 
 /// Improves `mesh` in place: works on the tets whose smallest dihedral angle is under
 /// options.targetMinDihedralDeg (tets positively oriented on input and output; labels kept per

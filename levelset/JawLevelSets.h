@@ -1,0 +1,28 @@
+// The level-set stage of one jaw: its bone and every tooth become narrow-band signed distances
+// (levelset/MeshToLevelSet.h) on one transform, and teeth that share much of their volume (a tooth
+// exported twice, two teeth segmented into each other) are refused before carving hides it.
+#pragma once
+
+#include "io/Case.h"
+#include "io/Progress.h"
+
+#include <openvdb/openvdb.h>
+
+#include <map>
+
+namespace jawmesh {
+
+/// The input level sets of one jaw, grids named after their labels.
+struct JawLevelSets {
+    openvdb::FloatGrid::Ptr bone;
+    std::map<int, openvdb::FloatGrid::ConstPtr> teeth;  ///< by UNN
+};
+
+/// meshToLevelSet of the bone and every tooth of `surfaces` (read from `jawCase`). Throws Error
+/// naming the input file for a surface that cannot become a level set (e.g. only degenerate
+/// triangles: a point cloud) and for two teeth sharing more than 30% of the smaller one's volume
+/// (levelset/InsideOverlap.h: a tooth exported twice, teeth merged). Throws Cancelled.
+JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double bandVoxels,
+                          Progress& progress = noProgress());
+
+}  // namespace jawmesh
