@@ -197,6 +197,132 @@ struct Entry {
     float nearness;
     std::uint32_t triangle;
 };
+/// Voxel range of a triangle's bounding box widened by r voxels.
+void voxelRange(const std::vector<Vec3>& vx, const Tri& tri, double r, openvdb::Coord& lo, openvdb::Coord& hi) {
+    for (int d = 0; d < 3; ++d) {
+        double a = vx[static_cast<std::size_t>(tri[0])][d], b = a;
+        for (int k = 1; k < 3; ++k) {
+            a = std::min(a, vx[static_cast<std::size_t>(tri[k])][d]);
+            b = std::max(b, vx[static_cast<std::size_t>(tri[k])][d]);
+        }
+        lo[d] = static_cast<int>(std::ceil(a - r));
+        hi[d] = static_cast<int>(std::floor(b + r));
+    }
+}
+
+/// The leaf columns (x, y) that the triangles' widened boxes cover.
+struct LeafColumns {
+    openvdb::Coord leafMin{std::numeric_limits<int>::max()}, leafMax{std::numeric_limits<int>::min()};
+    std::size_t ny = 0, count = 0;
+    std::size_t of(int lx, int ly) const {
+        return static_cast<std::size_t>(lx - leafMin.x()) * ny + static_cast<std::size_t>(ly - leafMin.y());
+    }
+};
+
+LeafColumns leafColumns(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, double r) {
+    LeafColumns c;
+    for (const Tri& tri : triangles) {
+        openvdb::Coord lo, hi;
+        voxelRange(vx, tri, r, lo, hi);
+        for (int d = 0; d < 3; ++d) {
+            c.leafMin[d] = std::min(c.leafMin[d], leafOf(lo[d]));
+            c.leafMax[d] = std::max(c.leafMax[d], leafOf(hi[d]));
+        }
+    }
+    const std::size_t nx = static_cast<std::size_t>(c.leafMax.x() - c.leafMin.x() + 1);
+    c.ny = static_cast<std::size_t>(c.leafMax.y() - c.leafMin.y() + 1);
+    c.count = nx * c.ny;
+    return c;
+}
+
+/// Calls emit(column, leafZ, nearness) for every leaf the triangle's band may reach: inside the
+/// widened bounding box and not farther than r from the triangle's plane.
+template <typename Emit>
+void forEachLeaf(const std::vector<Vec3>& vx, const Tri& tri, double r, const LeafColumns& columns, Emit&& emit) {
+    openvdb::Coord lo, hi;
+    voxelRange(vx, tri, r, lo, hi);
+    Vec3 n;
+    double offset = 0;
+    const bool planar = planeOf(vx, tri, n, offset);
+    const double halfExtent = 0.5 * (kLeafDim - 1) * (std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z()));
+    const Vec3 centroid = (vx[static_cast<std::size_t>(tri[0])] + vx[static_cast<std::size_t>(tri[1])] +
+                           vx[static_cast<std::size_t>(tri[2])]) / 3.0;
+    for (int lx = leafOf(lo.x()); lx <= leafOf(hi.x()); ++lx)
+        for (int ly = leafOf(lo.y()); ly <= leafOf(hi.y()); ++ly) {
+            const std::size_t col = columns.of(lx, ly);
+            for (int lz = leafOf(lo.z()); lz <= leafOf(hi.z()); ++lz) {
+                const Vec3 centre = Vec3(lx, ly, lz) * kLeafDim + Vec3::Constant(0.5 * (kLeafDim - 1));
+                if (planar && std::abs(n.dot(centre) - offset) - halfExtent >= r) continue;
+                emit(col, lz, static_cast<float>((centroid - centre).squaredNorm()));
+            }
+        }
+}
+
+/// (triangle, leaf) pairs bucketed by leaf column: count, prefix sum, fill. offsets[c] is where
+/// column c starts in the entries (offsets has one more element than columns).
+std::vector<Entry> bucketByColumn(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, double r,
+                                  const LeafColumns& columns, std::vector<std::uint64_t>& offsets, Progress& progress) {
+    constexpr std::size_t kGrain = 4096;
+    std::vector<std::atomic<std::uint64_t>> cursor(columns.count);
+    for (auto& c : cursor) c.store(0, std::memory_order_relaxed);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
+        progress.checkCancelled();
+        for (std::size_t t = range.begin(); t < range.end(); ++t)
+            forEachLeaf(vx, triangles[t], r, columns,
+                        [&](std::size_t col, int, float) { cursor[col].fetch_add(1, std::memory_order_relaxed); });
+    });
+    offsets.assign(columns.count + 1, 0);
+    std::uint64_t total = 0;
+    for (std::size_t c = 0; c < columns.count; ++c) {
+        offsets[c] = total;
+        total += cursor[c].load(std::memory_order_relaxed);
+        cursor[c].store(offsets[c], std::memory_order_relaxed);
+    }
+    offsets[columns.count] = total;
+    std::vector<Entry> entries(total);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
+        progress.checkCancelled();
+        for (std::size_t t = range.begin(); t < range.end(); ++t)
+            forEachLeaf(vx, triangles[t], r, columns, [&](std::size_t col, int lz, float nearness) {
+                entries[cursor[col].fetch_add(1, std::memory_order_relaxed)] = {lz, nearness, static_cast<std::uint32_t>(t)};
+            });
+    });
+    return entries;
+}
+
+/// The leaves of one column [b, e) of entries: sorted by leaf, nearest triangles first (they
+/// tighten best[] so that the bounds reject the rest; the triangle index breaks ties so the order
+/// is canonical), then one leaf per run of equal leafZ.
+void rasteriseColumn(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, Entry* b, Entry* e, int lx, int ly,
+                     double r, double voxelSizeMm, float background, std::vector<std::unique_ptr<LeafT>>& out) {
+    const float r2 = static_cast<float>(r * r);
+    // Active values stay below the background even where float rounding would reach it.
+    const float insideBand = std::nextafter(background, 0.0f);
+    float best[LeafT::SIZE];
+    std::sort(b, e, [](const Entry& p, const Entry& q) {
+        if (p.leafZ != q.leafZ) return p.leafZ < q.leafZ;
+        if (p.nearness != q.nearness) return p.nearness < q.nearness;
+        return p.triangle < q.triangle;
+    });
+    for (Entry* run = b; run != e;) {
+        Entry* runEnd = run;
+        while (runEnd != e && runEnd->leafZ == run->leafZ) ++runEnd;
+        const openvdb::Coord origin(lx * kLeafDim, ly * kLeafDim, run->leafZ * kLeafDim);
+        const Vec3 originVec(origin.x(), origin.y(), origin.z());
+        std::fill(best, best + LeafT::SIZE, r2);
+        for (Entry* p = run; p != runEnd; ++p)
+            rasteriseBand(localTriangle(vx, triangles[p->triangle], originVec), static_cast<float>(r), best);
+        std::unique_ptr<LeafT> leaf;
+        for (openvdb::Index i = 0; i < LeafT::SIZE; ++i) {
+            if (!(best[i] < r2)) continue;
+            if (!leaf) leaf = std::make_unique<LeafT>(origin, background, false);
+            leaf->setValueOn(i, std::min(static_cast<float>(std::sqrt(best[i]) * voxelSizeMm), insideBand));
+        }
+        if (leaf) out.push_back(std::move(leaf));
+        run = runEnd;
+    }
+}
+
 }  // namespace
 
 openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, double voxelSizeMm,
@@ -205,122 +331,22 @@ openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vec
     auto tree = std::make_shared<openvdb::FloatTree>(background);
     if (triangles.empty()) return tree;
     const double r = halfWidthVoxels;
-
-    // Voxel range of each triangle's band-widened bounding box.
-    auto voxelRange = [&](const Tri& tri, openvdb::Coord& lo, openvdb::Coord& hi) {
-        for (int d = 0; d < 3; ++d) {
-            double a = vx[static_cast<std::size_t>(tri[0])][d], b = a;
-            for (int k = 1; k < 3; ++k) {
-                a = std::min(a, vx[static_cast<std::size_t>(tri[k])][d]);
-                b = std::max(b, vx[static_cast<std::size_t>(tri[k])][d]);
-            }
-            lo[d] = static_cast<int>(std::ceil(a - r));
-            hi[d] = static_cast<int>(std::floor(b + r));
-        }
-    };
-    openvdb::Coord leafMin(std::numeric_limits<int>::max()), leafMax(std::numeric_limits<int>::min());
-    for (const Tri& tri : triangles) {
-        openvdb::Coord lo, hi;
-        voxelRange(tri, lo, hi);
-        for (int d = 0; d < 3; ++d) {
-            leafMin[d] = std::min(leafMin[d], leafOf(lo[d]));
-            leafMax[d] = std::max(leafMax[d], leafOf(hi[d]));
-        }
-    }
-    const std::size_t nx = static_cast<std::size_t>(leafMax.x() - leafMin.x() + 1);
-    const std::size_t ny = static_cast<std::size_t>(leafMax.y() - leafMin.y() + 1);
-    const std::size_t columns = nx * ny;
-
-    // Calls emit(column, leafZ, nearness) for every leaf the triangle's band may reach: inside the
-    // widened bounding box and not farther than r from the triangle's plane.
-    auto forEachLeaf = [&](const Tri& tri, auto&& emit) {
-        openvdb::Coord lo, hi;
-        voxelRange(tri, lo, hi);
-        Vec3 n;
-        double offset = 0;
-        const bool planar = planeOf(vx, tri, n, offset);
-        const double halfExtent = 0.5 * (kLeafDim - 1) * (std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z()));
-        const Vec3 centroid = (vx[static_cast<std::size_t>(tri[0])] + vx[static_cast<std::size_t>(tri[1])] +
-                               vx[static_cast<std::size_t>(tri[2])]) / 3.0;
-        for (int lx = leafOf(lo.x()); lx <= leafOf(hi.x()); ++lx)
-            for (int ly = leafOf(lo.y()); ly <= leafOf(hi.y()); ++ly) {
-                const std::size_t col = static_cast<std::size_t>(lx - leafMin.x()) * ny + static_cast<std::size_t>(ly - leafMin.y());
-                for (int lz = leafOf(lo.z()); lz <= leafOf(hi.z()); ++lz) {
-                    const Vec3 centre = Vec3(lx, ly, lz) * kLeafDim + Vec3::Constant(0.5 * (kLeafDim - 1));
-                    if (planar && std::abs(n.dot(centre) - offset) - halfExtent >= r) continue;
-                    emit(col, lz, static_cast<float>((centroid - centre).squaredNorm()));
-                }
-            }
-    };
-
-    // Bucket (triangle, leaf) pairs by leaf column: count, prefix sum, fill, then sort each
-    // column by (leaf, triangle) so the order does not depend on scheduling.
-    constexpr std::size_t kGrain = 4096;
-    std::vector<std::atomic<std::uint64_t>> cursor(columns);
-    for (auto& c : cursor) c.store(0, std::memory_order_relaxed);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
-        progress.checkCancelled();
-        for (std::size_t t = range.begin(); t < range.end(); ++t)
-            forEachLeaf(triangles[t], [&](std::size_t col, int, float) { cursor[col].fetch_add(1, std::memory_order_relaxed); });
-    });
-    std::vector<std::uint64_t> offsets(columns + 1);
-    std::uint64_t total = 0;
-    for (std::size_t c = 0; c < columns; ++c) {
-        offsets[c] = total;
-        total += cursor[c].load(std::memory_order_relaxed);
-        cursor[c].store(offsets[c], std::memory_order_relaxed);
-    }
-    offsets[columns] = total;
-    std::vector<Entry> entries(total);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
-        progress.checkCancelled();
-        for (std::size_t t = range.begin(); t < range.end(); ++t)
-            forEachLeaf(triangles[t], [&](std::size_t col, int lz, float nearness) {
-                entries[cursor[col].fetch_add(1, std::memory_order_relaxed)] = {lz, nearness, static_cast<std::uint32_t>(t)};
-            });
-    });
-    std::vector<std::atomic<std::uint64_t>>().swap(cursor);
+    const LeafColumns columns = leafColumns(vx, triangles, r);
+    std::vector<std::uint64_t> offsets;
+    std::vector<Entry> entries = bucketByColumn(vx, triangles, r, columns, offsets, progress);
     progress.update(0.1);
 
-    // Per column: sort, then one leaf per run of equal leafZ.
-    std::vector<std::vector<std::unique_ptr<LeafT>>> leaves(columns);
+    std::vector<std::vector<std::unique_ptr<LeafT>>> leaves(columns.count);
     std::atomic<std::size_t> columnsDone{0};
-    const float r2 = static_cast<float>(r * r);
-    // Active values stay below the background even where float rounding would reach it.
-    const float insideBand = std::nextafter(background, 0.0f);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, columns, 16), [&](const tbb::blocked_range<std::size_t>& range) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, columns.count, 16), [&](const tbb::blocked_range<std::size_t>& range) {
         progress.checkCancelled();
-        float best[LeafT::SIZE];
         for (std::size_t col = range.begin(); col < range.end(); ++col) {
-            Entry* b = entries.data() + offsets[col];
-            Entry* e = entries.data() + offsets[col + 1];
-            // By leaf, nearest triangles first (they tighten best[] so that the bounds reject the
-            // rest); the triangle index breaks ties so the order is canonical.
-            std::sort(b, e, [](const Entry& p, const Entry& q) {
-                if (p.leafZ != q.leafZ) return p.leafZ < q.leafZ;
-                if (p.nearness != q.nearness) return p.nearness < q.nearness;
-                return p.triangle < q.triangle;
-            });
-            const int lx = leafMin.x() + static_cast<int>(col / ny), ly = leafMin.y() + static_cast<int>(col % ny);
-            for (Entry* run = b; run != e;) {
-                Entry* runEnd = run;
-                while (runEnd != e && runEnd->leafZ == run->leafZ) ++runEnd;
-                const openvdb::Coord origin(lx * kLeafDim, ly * kLeafDim, run->leafZ * kLeafDim);
-                const Vec3 originVec(origin.x(), origin.y(), origin.z());
-                std::fill(best, best + LeafT::SIZE, r2);
-                for (Entry* p = run; p != runEnd; ++p)
-                    rasteriseBand(localTriangle(vx, triangles[p->triangle], originVec), static_cast<float>(r), best);
-                std::unique_ptr<LeafT> leaf;
-                for (openvdb::Index i = 0; i < LeafT::SIZE; ++i) {
-                    if (!(best[i] < r2)) continue;
-                    if (!leaf) leaf = std::make_unique<LeafT>(origin, background, false);
-                    leaf->setValueOn(i, std::min(static_cast<float>(std::sqrt(best[i]) * voxelSizeMm), insideBand));
-                }
-                if (leaf) leaves[col].push_back(std::move(leaf));
-                run = runEnd;
-            }
+            const int lx = columns.leafMin.x() + static_cast<int>(col / columns.ny);
+            const int ly = columns.leafMin.y() + static_cast<int>(col % columns.ny);
+            rasteriseColumn(vx, triangles, entries.data() + offsets[col], entries.data() + offsets[col + 1], lx, ly, r, voxelSizeMm,
+                            background, leaves[col]);
             const std::size_t done = ++columnsDone;
-            if (done % 1024 == 0) progress.update(0.1 + 0.85 * static_cast<double>(done) / static_cast<double>(columns));
+            if (done % 1024 == 0) progress.update(0.1 + 0.85 * static_cast<double>(done) / static_cast<double>(columns.count));
         }
     });
     std::vector<Entry>().swap(entries);

@@ -103,16 +103,8 @@ struct Pending {
     std::uint16_t offset;
     std::int8_t inside, outside;
 };
-}  // namespace
 
-openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, double halfWidthVoxels,
-                                       Progress& progress) {
-    MeshToLevelSetStats stats;
-    return meshToLevelSet(mesh, voxelSizeMm, halfWidthVoxels, stats, progress);
-}
-
-openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, double halfWidthVoxels,
-                                       MeshToLevelSetStats& stats, Progress& progress) {
+void requireLevelSetInput(const SurfaceMesh& mesh, double voxelSizeMm, double halfWidthVoxels) {
     if (!(voxelSizeMm > 0.0) || !std::isfinite(voxelSizeMm))
         throw Error("level set: voxel size must be a positive number of mm, got " + std::to_string(voxelSizeMm));
     if (!(halfWidthVoxels >= 1.0) || !std::isfinite(halfWidthVoxels))
@@ -123,7 +115,140 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
     if (maxIndex > 1.0e8)
         throw Error("level set: the voxel size " + std::to_string(voxelSizeMm) + " mm is too small for a surface spanning " +
                     std::to_string(box.size().maxCoeff()) + " mm");
+}
 
+/// Votes of the scanlines through one leaf's active voxels (inside / outside per voxel offset).
+/// Lines with an active voxel still open only: after two agreeing votes the third axis cannot
+/// change the majority, so it is not asked (a third fewer lookups).
+void voteLeaf(const openvdb::FloatTree::LeafNodeType& leaf, const ScanlineWinding& scanlines, std::int8_t inside[512],
+              std::int8_t outside[512]) {
+    const auto& mask = leaf.getValueMask();
+    const openvdb::Coord o = leaf.origin();
+    int w[kGridLeafDim];
+    for (int axis = 0; axis < 3; ++axis) {
+        const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+        for (int du = 0; du < kGridLeafDim; ++du) {
+            for (int dv = 0; dv < kGridLeafDim; ++dv) {
+                int local[3];
+                local[ua] = du;
+                local[va] = dv;
+                bool any = false;
+                for (int a = 0; a < kGridLeafDim && !any; ++a) {
+                    local[axis] = a;
+                    const int off = leafOffset(local[0], local[1], local[2]);
+                    any = mask.isOn(static_cast<openvdb::Index>(off)) && inside[off] < 2 && outside[off] < 2;
+                }
+                if (!any) continue;
+                if (!scanlines.windings(axis, o[ua] + du, o[va] + dv, o[axis], kGridLeafDim, w)) continue;
+                for (int a = 0; a < kGridLeafDim; ++a) {
+                    local[axis] = a;
+                    const int off = leafOffset(local[0], local[1], local[2]);
+                    (w[a] >= 1 ? inside : outside)[off] += 1;
+                }
+            }
+        }
+    }
+}
+
+/// Signs every active voxel by the majority of the reliable scanlines through it; returns the
+/// voxels without a majority, in leaf order.
+std::vector<Pending> signByScanlines(openvdb::tree::LeafManager<openvdb::FloatTree>& leaves, const ScanlineWinding& scanlines,
+                                     Progress& progress) {
+    const std::size_t leafCount = leaves.leafCount();
+    std::vector<std::vector<Pending>> pendingPerLeaf(leafCount);
+    std::atomic<std::size_t> leavesDone{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leafCount, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+        progress.checkCancelled();
+        for (std::size_t li = r.begin(); li < r.end(); ++li) {
+            auto& leaf = leaves.leaf(li);
+            std::int8_t inside[512] = {0};
+            std::int8_t outside[512] = {0};
+            voteLeaf(leaf, scanlines, inside, outside);
+            for (auto it = leaf.getValueMask().beginOn(); it; ++it) {
+                const openvdb::Index off = it.pos();
+                const float d = std::abs(leaf.getValue(off));
+                if (inside[off] > outside[off]) leaf.setValueOnly(off, -d);
+                else if (outside[off] > inside[off]) leaf.setValueOnly(off, d);
+                else pendingPerLeaf[li].push_back({li, static_cast<std::uint16_t>(off), inside[off], outside[off]});
+            }
+            const std::size_t done = ++leavesDone;
+            if (done % 4096 == 0) progress.update(0.75 + 0.15 * static_cast<double>(done) / static_cast<double>(leafCount));
+        }
+    });
+    std::vector<Pending> pending;
+    for (auto& v : pendingPerLeaf) pending.insert(pending.end(), v.begin(), v.end());
+    return pending;
+}
+
+/// Voxels without a scanline majority: more lines, in generic directions, with Embree. Returns
+/// how many stay tied (taken as outside).
+std::size_t signByLines(std::vector<Pending>& pending, openvdb::tree::LeafManager<openvdb::FloatTree>& leaves,
+                        const OrientedSurface& oriented, double voxelSizeMm, Progress& progress) {
+    const LineWindingQuery query(oriented.vertices, oriented.triangles, {});
+    constexpr int kMaxLines = 16;
+    std::atomic<std::size_t> unresolved{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+        progress.checkCancelled();
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            Pending& p = pending[i];
+            auto& leaf = leaves.leaf(p.leaf);
+            const openvdb::Coord ijk = leaf.offsetToGlobalCoord(p.offset);
+            const Vec3 world = Vec3(ijk.x(), ijk.y(), ijk.z()) * voxelSizeMm;
+            // Start the direction sequence at a voxel-dependent place so neighbours differ.
+            const int first = static_cast<int>((static_cast<unsigned>(ijk.x()) * 73856093u ^ static_cast<unsigned>(ijk.y()) * 19349663u ^
+                                                static_cast<unsigned>(ijk.z()) * 83492791u) % 64u);
+            int in = p.inside, out = p.outside;
+            for (int k = 0; k < kMaxLines; ++k) {
+                if (in + out >= 3 && in != out) break;
+                const auto wn = query.windingAlongLine(world, LineWindingQuery::genericDirection(first + k));
+                if (wn) (*wn >= 1 ? in : out) += 1;
+            }
+            if (in == out) ++unresolved;
+            const float d = std::abs(leaf.getValue(p.offset));
+            leaf.setValueOnly(p.offset, in > out ? -d : d);
+        }
+    });
+    return unresolved.load();
+}
+
+/// Triangles inside the union (or outside everything) must not shape the distance: if there are
+/// enough of them to matter, the band is recomputed from the boundary triangles alone and takes its
+/// signs from `grid` (whose band contains the new one).
+openvdb::FloatGrid::Ptr withoutInternalTriangles(openvdb::FloatGrid::Ptr grid, const OrientedSurface& oriented,
+                                                 const std::vector<Vec3>& indexVertices, double voxelSizeMm, double halfWidthVoxels,
+                                                 MeshToLevelSetStats& stats, Progress& progress) {
+    const std::vector<char> internal = findNonBoundaryTriangles(*grid, oriented, indexVertices, voxelSizeMm, stats.internalTriangles);
+    constexpr std::size_t kMinInternal = 16;
+    if (stats.internalTriangles < kMinInternal || stats.internalTriangles >= oriented.triangles.size()) return grid;
+    std::vector<Tri> boundary;
+    boundary.reserve(oriented.triangles.size() - stats.internalTriangles);
+    for (std::size_t t = 0; t < oriented.triangles.size(); ++t)
+        if (!internal[t]) boundary.push_back(oriented.triangles[t]);
+    SubProgress again(progress, 0.95, 0.99);
+    const auto transform = openvdb::math::Transform::createLinearTransform(voxelSizeMm);
+    openvdb::FloatGrid::Ptr rebuilt = unsignedBand(indexVertices, boundary, transform, voxelSizeMm, halfWidthVoxels, again);
+    openvdb::tree::LeafManager<openvdb::FloatTree> newLeaves(rebuilt->tree());
+    newLeaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
+        auto acc = grid->getConstAccessor();
+        for (auto it = leaf.beginValueOn(); it; ++it)
+            if (acc.getValue(it.getCoord()) < 0.0f) it.setValue(-std::abs(*it));
+    });
+    const float background = static_cast<float>(halfWidthVoxels * voxelSizeMm);
+    openvdb::tools::signedFloodFillWithValues(rebuilt->tree(), background, -background);
+    return rebuilt;
+}
+
+}  // namespace
+
+openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, double halfWidthVoxels,
+                                       Progress& progress) {
+    MeshToLevelSetStats stats;
+    return meshToLevelSet(mesh, voxelSizeMm, halfWidthVoxels, stats, progress);
+}
+
+openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, double halfWidthVoxels,
+                                       MeshToLevelSetStats& stats, Progress& progress) {
+    requireLevelSetInput(mesh, voxelSizeMm, halfWidthVoxels);
     stats = MeshToLevelSetStats{};
     stats.inputTriangles = mesh.triangles.size();
     ProgressStage stage(progress, "levelset");
@@ -157,117 +282,21 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
     stats.crossings = scanlines.crossingCount();
     stats.secondsScanlines = secondsSince(t0);
 
-    // 4. Sign of every active voxel: majority of the reliable scanlines through it.
+    // 4. Sign of every active voxel: majority of the reliable scanlines through it, 5. more lines
+    // where there is none, 6. inactive voxels and tiles take the sign of their active neighbours.
     t0 = Clock::now();
-    openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid->tree());
-    const std::size_t leafCount = leaves.leafCount();
-    std::vector<std::vector<Pending>> pendingPerLeaf(leafCount);
-    std::atomic<std::size_t> leavesDone{0};
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leafCount, 64), [&](const tbb::blocked_range<std::size_t>& r) {
-        progress.checkCancelled();
-        for (std::size_t li = r.begin(); li < r.end(); ++li) {
-            auto& leaf = leaves.leaf(li);
-            const auto& mask = leaf.getValueMask();
-            const openvdb::Coord o = leaf.origin();
-            std::int8_t inside[512] = {0};
-            std::int8_t outside[512] = {0};
-            int w[kGridLeafDim];
-            for (int axis = 0; axis < 3; ++axis) {
-                const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
-                for (int du = 0; du < kGridLeafDim; ++du) {
-                    for (int dv = 0; dv < kGridLeafDim; ++dv) {
-                        int local[3];
-                        local[ua] = du;
-                        local[va] = dv;
-                        // Lines with an active voxel still open: after two agreeing votes the third
-                        // axis cannot change the majority, so it is not asked (a third fewer lookups).
-                        bool any = false;
-                        for (int a = 0; a < kGridLeafDim && !any; ++a) {
-                            local[axis] = a;
-                            const int off = leafOffset(local[0], local[1], local[2]);
-                            any = mask.isOn(static_cast<openvdb::Index>(off)) && inside[off] < 2 && outside[off] < 2;
-                        }
-                        if (!any) continue;
-                        if (!scanlines.windings(axis, o[ua] + du, o[va] + dv, o[axis], kGridLeafDim, w)) continue;
-                        for (int a = 0; a < kGridLeafDim; ++a) {
-                            local[axis] = a;
-                            const int off = leafOffset(local[0], local[1], local[2]);
-                            (w[a] >= 1 ? inside : outside)[off] += 1;
-                        }
-                    }
-                }
-            }
-            for (auto it = mask.beginOn(); it; ++it) {
-                const openvdb::Index off = it.pos();
-                const float d = std::abs(leaf.getValue(off));
-                if (inside[off] > outside[off]) leaf.setValueOnly(off, -d);
-                else if (outside[off] > inside[off]) leaf.setValueOnly(off, d);
-                else pendingPerLeaf[li].push_back({li, static_cast<std::uint16_t>(off), inside[off], outside[off]});
-            }
-            const std::size_t done = ++leavesDone;
-            if (done % 4096 == 0) progress.update(0.75 + 0.15 * static_cast<double>(done) / static_cast<double>(leafCount));
-        }
-    });
-    std::vector<Pending> pending;
-    for (auto& v : pendingPerLeaf) pending.insert(pending.end(), v.begin(), v.end());
-    std::vector<std::vector<Pending>>().swap(pendingPerLeaf);
-    stats.fallbackVoxels = pending.size();
-    stage.update(0.9);
-
-    // 5. Voxels without a scanline majority: more lines, in generic directions, with Embree.
-    if (!pending.empty()) {
-        const LineWindingQuery query(oriented.vertices, oriented.triangles, {});
-        constexpr int kMaxLines = 16;
-        std::atomic<std::size_t> unresolved{0};
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
-            progress.checkCancelled();
-            for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                Pending& p = pending[i];
-                auto& leaf = leaves.leaf(p.leaf);
-                const openvdb::Coord ijk = leaf.offsetToGlobalCoord(p.offset);
-                const Vec3 world = Vec3(ijk.x(), ijk.y(), ijk.z()) * voxelSizeMm;
-                // Start the direction sequence at a voxel-dependent place so neighbours differ.
-                const int first = static_cast<int>((static_cast<unsigned>(ijk.x()) * 73856093u ^ static_cast<unsigned>(ijk.y()) * 19349663u ^
-                                                    static_cast<unsigned>(ijk.z()) * 83492791u) % 64u);
-                int in = p.inside, out = p.outside;
-                for (int k = 0; k < kMaxLines; ++k) {
-                    if (in + out >= 3 && in != out) break;
-                    const auto wn = query.windingAlongLine(world, LineWindingQuery::genericDirection(first + k));
-                    if (wn) (*wn >= 1 ? in : out) += 1;
-                }
-                if (in == out) ++unresolved;
-                const float d = std::abs(leaf.getValue(p.offset));
-                leaf.setValueOnly(p.offset, in > out ? -d : d);
-            }
-        });
-        stats.unresolvedVoxels = unresolved.load();
+    {
+        openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid->tree());
+        std::vector<Pending> pending = signByScanlines(leaves, scanlines, progress);
+        stats.fallbackVoxels = pending.size();
+        stage.update(0.9);
+        if (!pending.empty()) stats.unresolvedVoxels = signByLines(pending, leaves, oriented, voxelSizeMm, progress);
     }
-
-    // 6. Level-set form: inactive voxels and tiles take the sign of their active neighbours.
     const float background = static_cast<float>(halfWidthVoxels * voxelSizeMm);
     openvdb::tools::signedFloodFillWithValues(grid->tree(), background, -background);
 
-    // 7. Triangles inside the union (or outside everything) must not shape the distance: if there
-    // are enough of them to matter, the band is recomputed from the boundary triangles alone and
-    // takes its signs from the grid above (its band contains the new one).
-    const std::vector<char> internal = findNonBoundaryTriangles(*grid, oriented, indexVertices, voxelSizeMm, stats.internalTriangles);
-    constexpr std::size_t kMinInternal = 16;
-    if (stats.internalTriangles >= kMinInternal && stats.internalTriangles < oriented.triangles.size()) {
-        std::vector<Tri> boundary;
-        boundary.reserve(oriented.triangles.size() - stats.internalTriangles);
-        for (std::size_t t = 0; t < oriented.triangles.size(); ++t)
-            if (!internal[t]) boundary.push_back(oriented.triangles[t]);
-        SubProgress again(progress, 0.95, 0.99);
-        openvdb::FloatGrid::Ptr rebuilt = unsignedBand(indexVertices, boundary, transform, voxelSizeMm, halfWidthVoxels, again);
-        openvdb::tree::LeafManager<openvdb::FloatTree> newLeaves(rebuilt->tree());
-        newLeaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
-            auto acc = grid->getConstAccessor();
-            for (auto it = leaf.beginValueOn(); it; ++it)
-                if (acc.getValue(it.getCoord()) < 0.0f) it.setValue(-std::abs(*it));
-        });
-        grid = rebuilt;
-        openvdb::tools::signedFloodFillWithValues(grid->tree(), background, -background);
-    }
+    // 7. Without the triangles inside the union, when there are enough to matter.
+    grid = withoutInternalTriangles(grid, oriented, indexVertices, voxelSizeMm, halfWidthVoxels, stats, progress);
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     stats.activeVoxels = static_cast<std::size_t>(grid->activeVoxelCount());
     stats.secondsSign = secondsSince(t0);

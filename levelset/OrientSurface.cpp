@@ -63,14 +63,9 @@ double triangleArea(const std::vector<Vec3>& v, const Tri& t) {
                      .cross(v[static_cast<std::size_t>(t[2])] - v[static_cast<std::size_t>(t[0])])
                      .norm();
 }
-}  // namespace
-
-OrientedSurface orientSurface(const SurfaceMesh& mesh, Progress& progress) {
-    OrientedSurface out;
-    const std::vector<Index> remap = weldVertices(mesh.vertices, out.vertices);
-    progress.checkCancelled();
-
-    // Drop degenerate triangles, then duplicates (same vertex set; the first one is kept).
+/// Welded, without degenerate triangles, then without duplicates (same vertex set; the first one
+/// is kept); counts what it drops in out.
+void cleanTriangles(const SurfaceMesh& mesh, const std::vector<Index>& remap, OrientedSurface& out) {
     const BBox box = boundingBox(mesh);
     const double scale = box.empty() ? 1.0 : std::max(box.size().maxCoeff(), 1e-9);
     const double minDoubleArea = 1e-14 * scale * scale;
@@ -85,43 +80,42 @@ OrientedSurface orientSurface(const SurfaceMesh& mesh, Progress& progress) {
         }
         tris.push_back(w);
     }
-    {
-        std::vector<Index> order(tris.size());
-        std::iota(order.begin(), order.end(), 0);
-        auto sortedKey = [&](Index i) {
-            Tri k = tris[static_cast<std::size_t>(i)];
-            std::sort(k.begin(), k.end());
-            return k;
-        };
-        tbb::parallel_sort(order.begin(), order.end(), [&](Index a, Index b) {
-            const Tri ka = sortedKey(a), kb = sortedKey(b);
-            return ka < kb || (ka == kb && a < b);
-        });
-        std::vector<char> keep(tris.size(), 1);
-        for (std::size_t i = 1; i < order.size(); ++i)
-            if (sortedKey(order[i]) == sortedKey(order[i - 1])) keep[static_cast<std::size_t>(order[i])] = 0;
-        for (std::size_t i = 0; i < tris.size(); ++i) {
-            if (keep[i]) out.triangles.push_back(tris[i]);
-            else ++out.droppedDuplicate;
-        }
+    std::vector<Index> order(tris.size());
+    std::iota(order.begin(), order.end(), 0);
+    auto sortedKey = [&](Index i) {
+        Tri k = tris[static_cast<std::size_t>(i)];
+        std::sort(k.begin(), k.end());
+        return k;
+    };
+    tbb::parallel_sort(order.begin(), order.end(), [&](Index a, Index b) {
+        const Tri ka = sortedKey(a), kb = sortedKey(b);
+        return ka < kb || (ka == kb && a < b);
+    });
+    std::vector<char> keep(tris.size(), 1);
+    for (std::size_t i = 1; i < order.size(); ++i)
+        if (sortedKey(order[i]) == sortedKey(order[i - 1])) keep[static_cast<std::size_t>(order[i])] = 0;
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+        if (keep[i]) out.triangles.push_back(tris[i]);
+        else ++out.droppedDuplicate;
     }
-    progress.checkCancelled();
-    const std::size_t n = out.triangles.size();
+}
 
-    // Manifold adjacency: an edge with exactly two triangles links them.
+/// Manifold adjacency: an edge with exactly two triangles links them. neighbour[3t+c] = the
+/// triangle across edge c of t (or -1); sameWalk[3t+c]: both walk that edge the same way.
+void manifoldNeighbours(const std::vector<Tri>& triangles, std::vector<Index>& neighbour, std::vector<char>& sameWalk) {
+    const std::size_t n = triangles.size();
     std::vector<HalfEdge> edges(3 * n);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t t) {
         for (int c = 0; c < 3; ++c) {
-            const std::int32_t a = out.triangles[t][c], b = out.triangles[t][(c + 1) % 3];
+            const std::int32_t a = triangles[t][c], b = triangles[t][(c + 1) % 3];
             edges[3 * t + c] = {edgeKey(a, b), static_cast<Index>(t), static_cast<std::int8_t>(c), a < b};
         }
     });
     tbb::parallel_sort(edges.begin(), edges.end(), [](const HalfEdge& a, const HalfEdge& b) {
         return a.key < b.key || (a.key == b.key && (a.tri < b.tri || (a.tri == b.tri && a.corner < b.corner)));
     });
-    // neighbour[3t+c] = other triangle across edge c (or -1); sameWalk: both walk it the same way.
-    std::vector<Index> neighbour(3 * n, -1);
-    std::vector<char> sameWalk(3 * n, 0);
+    neighbour.assign(3 * n, -1);
+    sameWalk.assign(3 * n, 0);
     for (std::size_t i = 0; i < edges.size();) {
         std::size_t j = i;
         while (j < edges.size() && edges[j].key == edges[i].key) ++j;
@@ -135,13 +129,15 @@ OrientedSurface orientSurface(const SurfaceMesh& mesh, Progress& progress) {
         }
         i = j;
     }
-    edges.clear();
-    edges.shrink_to_fit();
-    progress.checkCancelled();
+}
 
-    // Breadth-first propagation of a flip flag through manifold edges, patch by patch.
+/// Breadth-first propagation of a flip flag through manifold edges, patch by patch (out.patch);
+/// then each patch takes the majority of its input orientation, by area.
+std::vector<PatchSummary> propagateOrientation(OrientedSurface& out, const std::vector<Index>& neighbour,
+                                               const std::vector<char>& sameWalk, std::vector<char>& flip) {
+    const std::size_t n = out.triangles.size();
     out.patch.assign(n, -1);
-    std::vector<char> flip(n, 0);
+    flip.assign(n, 0);
     std::vector<PatchSummary> summary;
     std::deque<Index> queue;
     for (std::size_t seed = 0; seed < n; ++seed) {
@@ -170,47 +166,48 @@ OrientedSurface orientSurface(const SurfaceMesh& mesh, Progress& progress) {
             }
         }
     }
-    out.patchCount = static_cast<int>(summary.size());
-    // Majority of the input orientation, by area.
     std::vector<char> invertPatch(summary.size(), 0);
     for (std::size_t p = 0; p < summary.size(); ++p) invertPatch[p] = summary[p].flippedArea > summary[p].keptArea;
     for (std::size_t t = 0; t < n; ++t)
         if (invertPatch[static_cast<std::size_t>(out.patch[t])]) flip[t] = !flip[t];
-    progress.checkCancelled();
+    return summary;
+}
 
-    // Which patches lie inside others (judged with the majority orientation of the others).
+/// Which patches lie inside others (judged with the majority orientation of the others).
+std::vector<char> nestedPatches(const OrientedSurface& out, const std::vector<PatchSummary>& summary, const std::vector<char>& flip) {
     std::vector<char> nested(summary.size(), 0);
     constexpr Index kMinPatchForNesting = 16;
-    if (summary.size() > 1) {
-        LineWindingQuery query(out.vertices, out.triangles, out.patch);
-        std::vector<std::int8_t> sign(n);
-        for (std::size_t t = 0; t < n; ++t) sign[t] = flip[t] ? -1 : 1;
-        query.setOrientation(std::move(sign));
-        tbb::parallel_for(std::size_t(0), summary.size(), [&](std::size_t p) {
-            if (summary[p].size < kMinPatchForNesting) return;
-            const Tri& t = out.triangles[static_cast<std::size_t>(summary[p].largest)];
-            const Vec3 q = (out.vertices[static_cast<std::size_t>(t[0])] + out.vertices[static_cast<std::size_t>(t[1])] +
-                            out.vertices[static_cast<std::size_t>(t[2])]) / 3.0;
-            int inside = 0, outside = 0;
-            for (int k = 0; k < 7 && inside < 3 && outside < 3; ++k) {
-                const auto w = query.windingAlongLine(q, LineWindingQuery::genericDirection(k), static_cast<Index>(p));
-                if (!w) continue;
-                (*w != 0 ? inside : outside) += 1;
-            }
-            nested[p] = inside > outside;
-        });
-    }
-    progress.checkCancelled();
+    if (summary.size() <= 1) return nested;
+    const std::size_t n = out.triangles.size();
+    LineWindingQuery query(out.vertices, out.triangles, out.patch);
+    std::vector<std::int8_t> sign(n);
+    for (std::size_t t = 0; t < n; ++t) sign[t] = flip[t] ? -1 : 1;
+    query.setOrientation(std::move(sign));
+    tbb::parallel_for(std::size_t(0), summary.size(), [&](std::size_t p) {
+        if (summary[p].size < kMinPatchForNesting) return;
+        const Tri& t = out.triangles[static_cast<std::size_t>(summary[p].largest)];
+        const Vec3 q = (out.vertices[static_cast<std::size_t>(t[0])] + out.vertices[static_cast<std::size_t>(t[1])] +
+                        out.vertices[static_cast<std::size_t>(t[2])]) / 3.0;
+        int inside = 0, outside = 0;
+        for (int k = 0; k < 7 && inside < 3 && outside < 3; ++k) {
+            const auto w = query.windingAlongLine(q, LineWindingQuery::genericDirection(k), static_cast<Index>(p));
+            if (!w) continue;
+            (*w != 0 ? inside : outside) += 1;
+        }
+        nested[p] = inside > outside;
+    });
+    return nested;
+}
 
-    // Outermost patches point outward: positive signed volume about the patch's own centre.
-    std::vector<Vec3> centre(summary.size(), Vec3::Zero());
-    {
-        std::vector<BBox> boxes(summary.size());
-        for (std::size_t t = 0; t < n; ++t)
-            for (Index v : out.triangles[t]) boxes[static_cast<std::size_t>(out.patch[t])].extend(out.vertices[static_cast<std::size_t>(v)]);
-        for (std::size_t p = 0; p < summary.size(); ++p) centre[p] = 0.5 * (boxes[p].min + boxes[p].max);
-    }
-    std::vector<double> volume(summary.size(), 0.0);
+/// Signed volume (times 6) of each patch about its own box centre, with the flips applied.
+std::vector<double> patchVolumes(const OrientedSurface& out, std::size_t patches, const std::vector<char>& flip) {
+    const std::size_t n = out.triangles.size();
+    std::vector<Vec3> centre(patches, Vec3::Zero());
+    std::vector<BBox> boxes(patches);
+    for (std::size_t t = 0; t < n; ++t)
+        for (Index v : out.triangles[t]) boxes[static_cast<std::size_t>(out.patch[t])].extend(out.vertices[static_cast<std::size_t>(v)]);
+    for (std::size_t p = 0; p < patches; ++p) centre[p] = 0.5 * (boxes[p].min + boxes[p].max);
+    std::vector<double> volume(patches, 0.0);
     for (std::size_t t = 0; t < n; ++t) {
         const auto p = static_cast<std::size_t>(out.patch[t]);
         const Tri& tri = out.triangles[t];
@@ -219,11 +216,34 @@ OrientedSurface orientSurface(const SurfaceMesh& mesh, Progress& progress) {
         const Vec3 c = out.vertices[static_cast<std::size_t>(tri[2])] - centre[p];
         volume[p] += (flip[t] ? -1.0 : 1.0) * a.dot(b.cross(c));
     }
+    return volume;
+}
+
+}  // namespace
+
+OrientedSurface orientSurface(const SurfaceMesh& mesh, Progress& progress) {
+    OrientedSurface out;
+    const std::vector<Index> remap = weldVertices(mesh.vertices, out.vertices);
+    progress.checkCancelled();
+    cleanTriangles(mesh, remap, out);
+    progress.checkCancelled();
+    std::vector<Index> neighbour;
+    std::vector<char> sameWalk, flip;
+    manifoldNeighbours(out.triangles, neighbour, sameWalk);
+    progress.checkCancelled();
+    const std::vector<PatchSummary> summary = propagateOrientation(out, neighbour, sameWalk, flip);
+    out.patchCount = static_cast<int>(summary.size());
+    progress.checkCancelled();
+    const std::vector<char> nested = nestedPatches(out, summary, flip);
+    progress.checkCancelled();
+    // Outermost patches point outward: positive signed volume about the patch's own centre.
+    const std::vector<double> volume = patchVolumes(out, summary.size(), flip);
+    std::vector<char> invertPatch(summary.size(), 0);
     for (std::size_t p = 0; p < summary.size(); ++p) {
         if (nested[p]) ++out.nestedPatches;
         invertPatch[p] = !nested[p] && volume[p] < 0.0;
     }
-    for (std::size_t t = 0; t < n; ++t) {
+    for (std::size_t t = 0; t < out.triangles.size(); ++t) {
         if (invertPatch[static_cast<std::size_t>(out.patch[t])]) flip[t] = !flip[t];
         if (flip[t]) {
             std::swap(out.triangles[t][1], out.triangles[t][2]);
