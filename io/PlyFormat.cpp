@@ -4,7 +4,9 @@
 // are skipped. binary_big_endian is refused with a message saying so.
 #include "io/detail/MeshFormats.h"
 
+#include <cmath>
 #include <cstring>
+#include <functional>
 #include <vector>
 
 namespace jawmesh::detail {
@@ -133,17 +135,37 @@ std::size_t listLength(PlyBody& body, const PlyProperty& p, const std::string& p
     return static_cast<std::size_t>(n);
 }
 
-}  // namespace
+/// A PLY header: its elements in file order, the format and where the body starts.
+struct PlyHeader {
+    std::vector<PlyElement> elements;
+    bool ascii = false;
+    std::size_t bodyOffset = 0;
+};
 
-SurfaceMesh readPly(const std::string& path, std::string_view data) {
+/// One 'property' line (after the keyword) of the last element.
+PlyProperty plyProperty(Tokens& tokens, const std::function<void(const std::string&)>& fail) {
+    PlyProperty p;
+    std::string_view typeName = tokens.next();
+    if (typeName == "list") {
+        p.isList = true;
+        if (!plyTypeFromName(tokens.next(), p.countType) || !isIntegral(p.countType)) fail("list count type must be an integer type");
+        typeName = tokens.next();
+    }
+    if (!plyTypeFromName(typeName, p.type)) fail("unknown property type " + quoted(typeName));
+    p.name = std::string(tokens.next());
+    if (p.name.empty()) fail("property without a name");
+    return p;
+}
+
+PlyHeader readPlyHeader(const std::string& path, std::string_view data) {
     LineReader lines(data);
     std::string_view line;
     if (!lines.next(line) || line != "ply") throw Error(path, "not a PLY file (the first line is not 'ply')");
-    auto fail = [&](const std::string& what) {
+    const std::function<void(const std::string&)> fail = [&](const std::string& what) {
         throw Error(path, "header line " + std::to_string(lines.lineNumber()) + ": " + what);
     };
-    bool ascii = false, sawFormat = false, sawEnd = false;
-    std::vector<PlyElement> elements;
+    PlyHeader h;
+    bool sawFormat = false, sawEnd = false;
     while (lines.next(line)) {
         if (line.find('\0') != std::string_view::npos) fail("binary data inside the header");
         Tokens tokens(line);
@@ -155,10 +177,9 @@ SurfaceMesh readPly(const std::string& path, std::string_view data) {
         if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
         if (keyword == "format") {
             const std::string_view format = tokens.next();
-            if (format == "ascii") ascii = true;
-            else if (format == "binary_little_endian") ascii = false;
-            else if (format == "binary_big_endian")
-                fail("binary_big_endian PLY is not supported; re-export as binary_little_endian or ascii");
+            if (format == "ascii") h.ascii = true;
+            else if (format == "binary_little_endian") h.ascii = false;
+            else if (format == "binary_big_endian") fail("binary_big_endian PLY is not supported; re-export as binary_little_endian or ascii");
             else fail("unknown PLY format " + quoted(format));
             sawFormat = true;
         } else if (keyword == "element") {
@@ -166,66 +187,114 @@ SurfaceMesh readPly(const std::string& path, std::string_view data) {
             e.name = std::string(tokens.next());
             std::int64_t count = 0;
             const std::string_view countToken = tokens.next();
-            if (e.name.empty() || !parseInt(countToken, count) || count < 0)
-                fail("expected 'element <name> <count>'");
+            if (e.name.empty() || !parseInt(countToken, count) || count < 0) fail("expected 'element <name> <count>'");
             e.count = static_cast<std::uint64_t>(count);
-            elements.push_back(std::move(e));
+            h.elements.push_back(std::move(e));
         } else if (keyword == "property") {
-            if (elements.empty()) fail("property before any element");
-            PlyProperty p;
-            std::string_view typeName = tokens.next();
-            if (typeName == "list") {
-                p.isList = true;
-                if (!plyTypeFromName(tokens.next(), p.countType) || !isIntegral(p.countType))
-                    fail("list count type must be an integer type");
-                typeName = tokens.next();
-            }
-            if (!plyTypeFromName(typeName, p.type)) fail("unknown property type " + quoted(typeName));
-            p.name = std::string(tokens.next());
-            if (p.name.empty()) fail("property without a name");
-            elements.back().properties.push_back(std::move(p));
+            if (h.elements.empty()) fail("property before any element");
+            h.elements.back().properties.push_back(plyProperty(tokens, fail));
         } else {
             fail("unexpected " + quoted(keyword));
         }
     }
     if (!sawEnd) throw Error(path, "PLY header has no 'end_header' (truncated or not a PLY file)");
     if (!sawFormat) throw Error(path, "PLY header has no 'format' line");
+    h.bodyOffset = lines.offset();
+    return h;
+}
 
-    PlyBody body(path, data.substr(lines.offset()), ascii);
+/// Where an element's x, y, z (vertex) and vertex-index list (face) are among its properties.
+struct PlyLayout {
+    bool isVertex = false, isFace = false;
+    int xyzIndex[3] = {-1, -1, -1};
+    int indicesIndex = -1;
+};
+
+PlyLayout plyLayout(const std::string& path, const PlyElement& e) {
+    PlyLayout l;
+    l.isVertex = e.name == "vertex";
+    l.isFace = e.name == "face";
+    for (std::size_t i = 0; i < e.properties.size(); ++i) {
+        const PlyProperty& p = e.properties[i];
+        if (l.isVertex && !p.isList) {
+            if (p.name == "x") l.xyzIndex[0] = static_cast<int>(i);
+            if (p.name == "y") l.xyzIndex[1] = static_cast<int>(i);
+            if (p.name == "z") l.xyzIndex[2] = static_cast<int>(i);
+        }
+        if (l.isFace && p.isList && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+            if (!isIntegral(p.type)) throw Error(path, "face property '" + p.name + "' must hold integers");
+            l.indicesIndex = static_cast<int>(i);
+        }
+    }
+    return l;
+}
+
+/// A face's polygon, fanned into triangles appended to the mesh.
+void readPlyPolygon(const std::string& path, PlyBody& body, const PlyProperty& p, std::size_t length, SurfaceMesh& mesh,
+                    std::vector<std::int32_t>& polygon) {
+    if (length < 3) throw Error(path, body.where() + " has " + std::to_string(length) + " corners (at least 3 needed)");
+    polygon.clear();
+    for (std::size_t j = 0; j < length; ++j) {
+        const double v = body.number(p.type);
+        if (v < 0 || v >= static_cast<double>(kMaxElements))
+            throw Error(path, body.where() + " uses vertex index " + std::to_string(static_cast<std::int64_t>(v)) + " (out of range)");
+        polygon.push_back(static_cast<std::int32_t>(v));
+    }
+    for (std::size_t j = 1; j + 1 < polygon.size(); ++j) {
+        if (mesh.triangles.size() >= kMaxElements) throw Error(path, "more than 2^31-1 triangles");
+        mesh.triangles.push_back({polygon[0], polygon[j], polygon[j + 1]});
+    }
+}
+
+/// Element n's properties: coordinates of a vertex, the polygon of a face, the rest skipped.
+void readPlyRecord(const std::string& path, PlyBody& body, const PlyElement& e, const PlyLayout& l, std::uint64_t n,
+                   SurfaceMesh& mesh, std::vector<std::int32_t>& polygon) {
+    body.at(e.name, n);
+    for (std::size_t i = 0; i < e.properties.size(); ++i) {
+        const PlyProperty& p = e.properties[i];
+        const int pi = static_cast<int>(i);
+        if (p.isList) {
+            const std::size_t length = listLength(body, p, path);
+            if (pi == l.indicesIndex) readPlyPolygon(path, body, p, length, mesh, polygon);
+            else
+                for (std::size_t j = 0; j < length; ++j) body.skip(p.type);
+        } else if (l.isVertex && (pi == l.xyzIndex[0] || pi == l.xyzIndex[1] || pi == l.xyzIndex[2])) {
+            const int axis = pi == l.xyzIndex[0] ? 0 : pi == l.xyzIndex[1] ? 1 : 2;
+            const double v = body.number(p.type);
+            if (!std::isfinite(v)) throw Error(path, body.where() + " has a NaN or infinite coordinate");
+            mesh.vertices[static_cast<std::size_t>(n)][axis] = v;
+        } else {
+            body.skip(p.type);
+        }
+    }
+}
+
+}  // namespace
+
+SurfaceMesh readPly(const std::string& path, std::string_view data) {
+    const PlyHeader header = readPlyHeader(path, data);
+    const bool ascii = header.ascii;
+    PlyBody body(path, data.substr(header.bodyOffset), ascii);
     SurfaceMesh mesh;
     bool sawVertices = false, sawFaces = false;
     std::vector<std::int32_t> polygon;
-    for (const PlyElement& e : elements) {
+    for (const PlyElement& e : header.elements) {
         // Every element needs at least one byte (ascii: one character) per property.
         std::size_t minBytes = 0;
         for (const PlyProperty& p : e.properties) minBytes += ascii ? 1 : (p.isList ? plySize(p.countType) : plySize(p.type));
         if (static_cast<double>(e.count) * static_cast<double>(minBytes) > static_cast<double>(body.remainingBytes()))
             throw Error(path, "header promises " + std::to_string(e.count) + " '" + e.name +
                                   "' elements, more than the rest of the file can hold (truncated or corrupt)");
-        const bool isVertex = e.name == "vertex", isFace = e.name == "face";
-        int xyzIndex[3] = {-1, -1, -1};
-        int indicesIndex = -1;
-        for (std::size_t i = 0; i < e.properties.size(); ++i) {
-            const PlyProperty& p = e.properties[i];
-            if (isVertex && !p.isList) {
-                if (p.name == "x") xyzIndex[0] = static_cast<int>(i);
-                if (p.name == "y") xyzIndex[1] = static_cast<int>(i);
-                if (p.name == "z") xyzIndex[2] = static_cast<int>(i);
-            }
-            if (isFace && p.isList && (p.name == "vertex_indices" || p.name == "vertex_index")) {
-                if (!isIntegral(p.type)) throw Error(path, "face property '" + p.name + "' must hold integers");
-                indicesIndex = static_cast<int>(i);
-            }
-        }
-        if (isVertex) {
-            if (xyzIndex[0] < 0 || xyzIndex[1] < 0 || xyzIndex[2] < 0)
+        const PlyLayout layout = plyLayout(path, e);
+        if (layout.isVertex) {
+            if (layout.xyzIndex[0] < 0 || layout.xyzIndex[1] < 0 || layout.xyzIndex[2] < 0)
                 throw Error(path, "vertex element lacks scalar x, y, z properties");
             if (e.count > kMaxElements || sawVertices) throw Error(path, "too many vertices or a second vertex element");
             mesh.vertices.resize(static_cast<std::size_t>(e.count));
             sawVertices = true;
         }
-        if (isFace) {
-            if (indicesIndex < 0) throw Error(path, "face element lacks a vertex_indices list");
+        if (layout.isFace) {
+            if (layout.indicesIndex < 0) throw Error(path, "face element lacks a vertex_indices list");
             if (sawFaces) throw Error(path, "second face element");
             mesh.triangles.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(e.count, kMaxElements)));
             sawFaces = true;
@@ -233,40 +302,7 @@ SurfaceMesh readPly(const std::string& path, std::string_view data) {
         // An element without properties holds no bytes whatever its count: nothing to read (a
         // count of 10^18 would otherwise be a loop of 10^18 empty iterations).
         if (e.properties.empty()) continue;
-        for (std::uint64_t n = 0; n < e.count; ++n) {
-            body.at(e.name, n);
-            for (std::size_t i = 0; i < e.properties.size(); ++i) {
-                const PlyProperty& p = e.properties[i];
-                const int pi = static_cast<int>(i);
-                if (p.isList) {
-                    const std::size_t length = listLength(body, p, path);
-                    if (pi == indicesIndex) {
-                        if (length < 3)
-                            throw Error(path, body.where() + " has " + std::to_string(length) + " corners (at least 3 needed)");
-                        polygon.clear();
-                        for (std::size_t j = 0; j < length; ++j) {
-                            const double v = body.number(p.type);
-                            if (v < 0 || v >= static_cast<double>(kMaxElements))
-                                throw Error(path, body.where() + " uses vertex index " + std::to_string(static_cast<std::int64_t>(v)) + " (out of range)");
-                            polygon.push_back(static_cast<std::int32_t>(v));
-                        }
-                        for (std::size_t j = 1; j + 1 < polygon.size(); ++j) {
-                            if (mesh.triangles.size() >= kMaxElements) throw Error(path, "more than 2^31-1 triangles");
-                            mesh.triangles.push_back({polygon[0], polygon[j], polygon[j + 1]});
-                        }
-                    } else {
-                        for (std::size_t j = 0; j < length; ++j) body.skip(p.type);
-                    }
-                } else if (isVertex && (pi == xyzIndex[0] || pi == xyzIndex[1] || pi == xyzIndex[2])) {
-                    const int axis = pi == xyzIndex[0] ? 0 : pi == xyzIndex[1] ? 1 : 2;
-                    const double v = body.number(p.type);
-                    if (!std::isfinite(v)) throw Error(path, body.where() + " has a NaN or infinite coordinate");
-                    mesh.vertices[static_cast<std::size_t>(n)][axis] = v;
-                } else {
-                    body.skip(p.type);
-                }
-            }
-        }
+        for (std::uint64_t n = 0; n < e.count; ++n) readPlyRecord(path, body, e, layout, n, mesh, polygon);
     }
     if (!sawVertices) throw Error(path, "PLY file has no vertex element");
     if (!sawFaces) throw Error(path, "PLY file has no face element (a point cloud is not a surface)");

@@ -57,73 +57,86 @@ inline std::uint64_t hashKey(const CornerKey& k) {
 
 }  // namespace
 
-SurfaceMesh weldFloatCorners(const std::string& path, const char* first, std::size_t triangleCount,
-                             std::size_t triangleStride) {
-    if (triangleCount == 0) throw Error(path, "file holds no triangles");
-    if (triangleCount * 3 > kMaxElements) throw Error(path, "more than 2^31-1 triangle corners");
-    const std::size_t corners = triangleCount * 3;
-    const std::size_t chunks = (corners + kChunk - 1) / kChunk;
+namespace {
 
+/// The binary corners as the welding passes see them: `count` corners of `stride`-apart triangles
+/// in chunks of kChunk, hashed into 2^bucketBits buckets (about 4096 corners each, at most 2^14).
+struct CornerPass {
+    const char* first;
+    std::size_t stride, count, chunks;
     int bucketBits = 0;
-    while (bucketBits < 14 && (corners >> bucketBits) > 4096) ++bucketBits;
-    const std::size_t buckets = std::size_t(1) << bucketBits;
-    auto bucketOf = [bucketBits](std::uint64_t h) {
-        return bucketBits == 0 ? std::size_t(0) : static_cast<std::size_t>(h >> (64 - bucketBits));
-    };
+    std::size_t buckets = 1;
+    CornerPass(const char* f, std::size_t s, std::size_t n) : first(f), stride(s), count(n), chunks((n + kChunk - 1) / kChunk) {
+        while (bucketBits < 14 && (count >> bucketBits) > 4096) ++bucketBits;
+        buckets = std::size_t(1) << bucketBits;
+    }
+    std::size_t bucketOf(std::uint64_t h) const { return bucketBits == 0 ? std::size_t(0) : static_cast<std::size_t>(h >> (64 - bucketBits)); }
+    std::size_t chunkEnd(std::size_t chunk) const { return std::min(count, (chunk + 1) * kChunk); }
+    CornerKey corner(std::size_t c) const { return loadCorner(first, stride, c); }
+};
 
-    // Pass 1: per-chunk bucket histograms, and the first non-finite corner of each chunk.
-    std::vector<std::uint32_t> counts(chunks * buckets, 0);
-    std::vector<std::size_t> firstBad(chunks, corners);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+/// Pass 1: per-chunk bucket histograms (counts[chunk * buckets + bucket]); throws at the first
+/// non-finite corner.
+std::vector<std::uint32_t> countCorners(const std::string& path, const CornerPass& cp) {
+    std::vector<std::uint32_t> counts(cp.chunks * cp.buckets, 0);
+    std::vector<std::size_t> firstBad(cp.chunks, cp.count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cp.chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
-            std::uint32_t* count = counts.data() + chunk * buckets;
-            const std::size_t end = std::min(corners, (chunk + 1) * kChunk);
-            for (std::size_t c = chunk * kChunk; c < end; ++c) {
-                const CornerKey k = loadCorner(first, triangleStride, c);
+            std::uint32_t* count = counts.data() + chunk * cp.buckets;
+            for (std::size_t c = chunk * kChunk; c < cp.chunkEnd(chunk); ++c) {
+                const CornerKey k = cp.corner(c);
                 if (!isFinite(k)) {
                     firstBad[chunk] = c;
                     break;
                 }
-                ++count[bucketOf(hashKey(k))];
+                ++count[cp.bucketOf(hashKey(k))];
             }
         }
     });
     const std::size_t bad = *std::min_element(firstBad.begin(), firstBad.end());
-    if (bad < corners) throw Error(path, "triangle " + std::to_string(bad / 3) + " has a NaN or infinite coordinate");
+    if (bad < cp.count) throw Error(path, "triangle " + std::to_string(bad / 3) + " has a NaN or infinite coordinate");
+    return counts;
+}
 
-    // Offsets: bucket-major, chunk-minor, so each bucket lists its corners in increasing order.
-    std::vector<std::size_t> bucketStart(buckets + 1, 0);
-    {
-        std::size_t offset = 0;
-        for (std::size_t b = 0; b < buckets; ++b) {
-            bucketStart[b] = offset;
-            for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
-                std::uint32_t& n = counts[chunk * buckets + b];
-                const std::uint32_t here = n;
-                n = static_cast<std::uint32_t>(offset);
-                offset += here;
-            }
+/// Turns the histograms into write offsets, bucket-major and chunk-minor (so each bucket lists its
+/// corners in increasing order); returns where each bucket starts (one more than buckets).
+std::vector<std::size_t> bucketOffsets(const CornerPass& cp, std::vector<std::uint32_t>& counts) {
+    std::vector<std::size_t> bucketStart(cp.buckets + 1, 0);
+    std::size_t offset = 0;
+    for (std::size_t b = 0; b < cp.buckets; ++b) {
+        bucketStart[b] = offset;
+        for (std::size_t chunk = 0; chunk < cp.chunks; ++chunk) {
+            std::uint32_t& n = counts[chunk * cp.buckets + b];
+            const std::uint32_t here = n;
+            n = static_cast<std::uint32_t>(offset);
+            offset += here;
         }
-        bucketStart[buckets] = offset;
     }
+    bucketStart[cp.buckets] = offset;
+    return bucketStart;
+}
 
-    // Pass 2: scatter corners into their buckets.
-    std::vector<BucketEntry> entries(corners);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+/// Pass 2: every corner scattered into its bucket.
+std::vector<BucketEntry> scatterCorners(const CornerPass& cp, std::vector<std::uint32_t>& offsets) {
+    std::vector<BucketEntry> entries(cp.count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cp.chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
-            std::uint32_t* next = counts.data() + chunk * buckets;
-            const std::size_t end = std::min(corners, (chunk + 1) * kChunk);
-            for (std::size_t c = chunk * kChunk; c < end; ++c) {
-                const CornerKey k = loadCorner(first, triangleStride, c);
-                entries[next[bucketOf(hashKey(k))]++] = BucketEntry{k, static_cast<std::uint32_t>(c)};
+            std::uint32_t* next = offsets.data() + chunk * cp.buckets;
+            for (std::size_t c = chunk * kChunk; c < cp.chunkEnd(chunk); ++c) {
+                const CornerKey k = cp.corner(c);
+                entries[next[cp.bucketOf(hashKey(k))]++] = BucketEntry{k, static_cast<std::uint32_t>(c)};
             }
         }
     });
+    return entries;
+}
 
-    // Pass 3: within each bucket (small, cache-resident), map every corner to the first corner
-    // with the same position.
-    std::vector<std::uint32_t> firstCorner(corners);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, buckets, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+/// Pass 3: within each bucket (small, cache-resident), every corner mapped to the first corner
+/// with the same position (open addressing).
+std::vector<std::uint32_t> firstCorners(const CornerPass& cp, const std::vector<BucketEntry>& entries,
+                                        const std::vector<std::size_t>& bucketStart) {
+    std::vector<std::uint32_t> firstCorner(cp.count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cp.buckets, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         std::vector<std::uint32_t> table;
         for (std::size_t b = r.begin(); b != r.end(); ++b) {
             const std::size_t begin = bucketStart[b], end = bucketStart[b + 1];
@@ -151,31 +164,31 @@ SurfaceMesh weldFloatCorners(const std::string& path, const char* first, std::si
             }
         }
     });
-    std::vector<BucketEntry>().swap(entries);
+    return firstCorner;
+}
 
-    // Pass 4: number the first corners in corner order (per-chunk counts, then a prefix sum).
-    std::vector<std::uint32_t> chunkVertexStart(chunks + 1, 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+/// Pass 4: the first corners numbered in corner order (per-chunk counts, then a prefix sum) as the
+/// mesh's vertices; pass 5: the triangles (a first corner never comes after those referring to it).
+SurfaceMesh numberVertices(const CornerPass& cp, std::size_t triangleCount, const std::vector<std::uint32_t>& firstCorner) {
+    std::vector<std::uint32_t> chunkVertexStart(cp.chunks + 1, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cp.chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
-            const std::size_t end = std::min(corners, (chunk + 1) * kChunk);
             std::uint32_t n = 0;
-            for (std::size_t c = chunk * kChunk; c < end; ++c) n += firstCorner[c] == c;
+            for (std::size_t c = chunk * kChunk; c < cp.chunkEnd(chunk); ++c) n += firstCorner[c] == c;
             chunkVertexStart[chunk + 1] = n;
         }
     });
-    for (std::size_t chunk = 0; chunk < chunks; ++chunk) chunkVertexStart[chunk + 1] += chunkVertexStart[chunk];
-
+    for (std::size_t chunk = 0; chunk < cp.chunks; ++chunk) chunkVertexStart[chunk + 1] += chunkVertexStart[chunk];
     SurfaceMesh mesh;
-    mesh.vertices.resize(chunkVertexStart[chunks]);
+    mesh.vertices.resize(chunkVertexStart[cp.chunks]);
     mesh.triangles.resize(triangleCount);
-    std::vector<std::uint32_t> vertexOfCorner(corners);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::uint32_t> vertexOfCorner(cp.count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cp.chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
-            const std::size_t end = std::min(corners, (chunk + 1) * kChunk);
             std::uint32_t id = chunkVertexStart[chunk];
-            for (std::size_t c = chunk * kChunk; c < end; ++c) {
+            for (std::size_t c = chunk * kChunk; c < cp.chunkEnd(chunk); ++c) {
                 if (firstCorner[c] != c) continue;
-                const CornerKey k = loadCorner(first, triangleStride, c);
+                const CornerKey k = cp.corner(c);
                 float xyz[3];
                 std::memcpy(xyz, k.bits, 12);
                 mesh.vertices[id] = Vec3(xyz[0], xyz[1], xyz[2]);
@@ -183,13 +196,29 @@ SurfaceMesh weldFloatCorners(const std::string& path, const char* first, std::si
             }
         }
     });
-    // Pass 5: triangles (a first corner never comes after the corners that refer to it).
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangleCount, kChunk), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t t = r.begin(); t != r.end(); ++t)
             for (std::size_t j = 0; j < 3; ++j)
                 mesh.triangles[t][j] = static_cast<std::int32_t>(vertexOfCorner[firstCorner[3 * t + j]]);
     });
     return mesh;
+}
+
+}  // namespace
+
+SurfaceMesh weldFloatCorners(const std::string& path, const char* first, std::size_t triangleCount,
+                             std::size_t triangleStride) {
+    if (triangleCount == 0) throw Error(path, "file holds no triangles");
+    if (triangleCount * 3 > kMaxElements) throw Error(path, "more than 2^31-1 triangle corners");
+    const CornerPass cp(first, triangleStride, triangleCount * 3);
+    std::vector<std::uint32_t> offsets = countCorners(path, cp);
+    const std::vector<std::size_t> bucketStart = bucketOffsets(cp, offsets);
+    std::vector<std::uint32_t> firstCorner;
+    {
+        const std::vector<BucketEntry> entries = scatterCorners(cp, offsets);
+        firstCorner = firstCorners(cp, entries, bucketStart);
+    }
+    return numberVertices(cp, triangleCount, firstCorner);
 }
 
 namespace {
