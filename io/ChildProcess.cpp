@@ -1,3 +1,4 @@
+// fork/exec for programs, fork/pipe for functions; both reaped with wait4 for the child's rusage.
 #include "io/ChildProcess.h"
 
 #include "io/Error.h"

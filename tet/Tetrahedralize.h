@@ -1,4 +1,7 @@
-// Labeled, quality tetrahedral mesh of a multi-material interface complex, with TetGen 1.5.
+// Labeled, quality tetrahedral mesh of a multi-material interface complex, with TetGen 1.5: holes
+// repaired first (tet/RepairHoles.h), TetGen run through tet/TetgenAdapter.h on a ladder of
+// settings (tet/Tetrahedralize.cpp), tets labeled from the interface sides (tet/LabelFromSides.h),
+// slivers improved (tet/ImproveSlivers.h), optional refinement rounds (tet/RefineComplex.h).
 #pragma once
 
 #include "filters/FillSurfaceHoles.h"
