@@ -238,7 +238,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
 
     const ValidationReport report =
         log.run(jaw + ": validate", progress, [&] { return requireValid(mesh, teeth); });
-    const QualityStats quality = measureQuality(mesh, options.tet.minDihedralDeg);
+    const QualityStats quality = measureQuality(mesh, options.tet.slivers.targetMinDihedralDeg);
     record["validation"] = toJson(report);
     record["quality"] = {{"min_dihedral_deg", quality.minDihedralDeg},
                          {"max_dihedral_deg", quality.maxDihedralDeg},

@@ -72,7 +72,7 @@ void checkComplex(const InterfaceComplex& plc) {
 
 void checkOptions(const TetOptions& o) {
     if (!(o.radiusEdgeRatio > 1.0)) throw Error(kWhat, "the radius-edge bound must be > 1 (TetGen -q)");
-    if (o.minDihedralDeg < 0 || o.minDihedralDeg >= 70)
+    if (o.slivers.targetMinDihedralDeg < 0 || o.slivers.targetMinDihedralDeg >= 70)
         throw Error(kWhat, "the minimum dihedral angle must be in [0, 70) degrees");
     if (o.tetgenMinDihedralDeg >= 70) throw Error(kWhat, "TetGen's minimum dihedral angle must be below 70 degrees");
 }
@@ -139,7 +139,7 @@ constexpr std::size_t kLadderRungs = sizeof kLadder / sizeof kLadder[0];
 
 std::string tetgenSwitches(const TetOptions& o, const Rung& rung) {
     const double dihedral = o.tetgenMinDihedralDeg >= 0 && !rung.targetAsTetgenDihedral ? o.tetgenMinDihedralDeg
-                                                                                          : o.minDihedralDeg;
+                                                                                          : o.slivers.targetMinDihedralDeg;
     std::string sw = "pzQA";
     sw += "q" + tetgenNumber(std::min(o.radiusEdgeRatio, rung.maxRadiusEdge)) + "/" + tetgenNumber(dihedral);
     const bool regional = o.boneEdgeMm > 0 || o.toothEdgeMm > 0 || o.pdlEdgeMm > 0;
@@ -190,14 +190,8 @@ bool attempt(Ladder& l, const InterfaceComplex& complex, std::size_t r, bool onl
     const std::size_t removed = keepLabeled(raw.mesh);
     if (raw.mesh.tets.empty()) throw Error(kWhat, "no tetrahedron received a label: are the seeds inside their regions?");
     SliverStats slivers;
-    if (o.improveSlivers) {
-        SliverOptions so;
-        so.targetMinDihedralDeg = o.minDihedralDeg;
-        so.lookaheadDepth = o.sliverLookaheadDepth;
-        so.interfacePushMm = o.sliverInterfacePushMm;
-        improveSlivers(raw.mesh, so, &slivers, l.progress);
-    }
-    const QualityStats q = measureQuality(raw.mesh, o.minDihedralDeg);
+    if (o.improveSlivers) improveSlivers(raw.mesh, o.slivers, &slivers, l.progress);
+    const QualityStats q = measureQuality(raw.mesh, o.slivers.targetMinDihedralDeg);
     if (!isBetter(l, q, onlyWhenItMeetsTheTarget)) return false;
     l.best = std::move(raw.mesh);
     l.bestQuality = q;
@@ -230,7 +224,7 @@ void climbLadder(Ladder& l, const InterfaceComplex& plc, std::size_t runs, Progr
 /// target are split and the kept rung runs again (in a child process: TetGen has aborted on such
 /// surfaces), while that leaves fewer such tets.
 void refineRounds(Ladder& l, const InterfaceComplex& plc, std::size_t runs, ProgressStage& stage, double stageSteps) {
-    const double target = l.options.minDihedralDeg;
+    const double target = l.options.slivers.targetMinDihedralDeg;
     InterfaceComplex refined;  // the complex of the last kept round
     for (int round = 0; round < l.options.refineRounds && l.bestQuality.belowDihedralThreshold > 0; ++round) {
         l.progress.checkCancelled();
