@@ -2,8 +2,8 @@
 
 #include "batch/BatchLayout.h"
 #include "batch/BatchPlan.h"
-#include "batch/ChildProcess.h"
 #include "batch/Schedule.h"
+#include "io/ChildProcess.h"
 
 #include <algorithm>
 #include <chrono>

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
         const std::string k = a.substr(0, eq);
         const double v = std::stod(a.substr(eq + 1));
         if (k == "q") o.radiusEdgeRatio = v;
-        else if (k == "dihedral") o.minDihedralDeg = v;
+        else if (k == "dihedral") o.slivers.targetMinDihedralDeg = v;
         else if (k == "tgdihedral") o.tetgenMinDihedralDeg = v;
         else if (k == "bone") o.boneEdgeMm = v;
         else if (k == "tooth") o.toothEdgeMm = v;
@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
     std::printf("| %s | %zu nodes, %zu tets (bone %zu, tooth %zu, pdl %zu) | min dihedral %.2f deg, %zu below %.0f (TetGen %zu) | "
                 "%s, %d attempts, %d refinement rounds (%zu edges split) | %.0f s | violations %zu |\n",
                 argv[1], out.nodes.size(), out.tets.size(), perKind["bone"], perKind["tooth"], perKind["pdl"], s.minDihedralDeg,
-                s.belowMinDihedral, o.minDihedralDeg, s.slivers.badBefore, s.switches.c_str(), s.attempts, s.refineRounds, s.refinedEdges, sec,
+                s.belowMinDihedral, o.slivers.targetMinDihedralDeg, s.slivers.badBefore, s.switches.c_str(), s.attempts, s.refineRounds, s.refinedEdges, sec,
                 r.violationCount());
     const jawmesh::HoleFillStats& h = s.holeRepair;
     if (!h.filled.empty())
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
         for (std::size_t t = 0; t < out.tets.size(); ++t) {
             const auto& e = out.tets[t];
             const jawmesh::TetShape sh = jawmesh::tetShape(out.nodes[std::size_t(e[0])], out.nodes[std::size_t(e[1])], out.nodes[std::size_t(e[2])], out.nodes[std::size_t(e[3])]);
-            if (sh.minDihedralDeg >= o.minDihedralDeg) continue;
+            if (sh.minDihedralDeg >= o.slivers.targetMinDihedralDeg) continue;
             const jawmesh::Vec3 c = (out.nodes[std::size_t(e[0])] + out.nodes[std::size_t(e[1])] + out.nodes[std::size_t(e[2])] + out.nodes[std::size_t(e[3])]) / 4.0;
             double best = 1e9;
             const char* how = "-";

@@ -2,7 +2,6 @@
 // Slurm job array; --array-task runs one task (what both kinds of batch start), --status collects.
 #include "batch/BatchLayout.h"
 #include "batch/BatchPlan.h"
-#include "batch/ChildProcess.h"
 #include "batch/Dataset.h"
 #include "batch/FolderLock.h"
 #include "batch/Manifest.h"
@@ -16,6 +15,7 @@
 #include "cli/NumberChecks.h"
 #include "cli/Pipeline.h"
 #include "io/AtomicFile.h"
+#include "io/ChildProcess.h"
 #include "io/Error.h"
 
 #include <algorithm>

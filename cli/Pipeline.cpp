@@ -154,7 +154,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
 
     const ValidationReport report =
         log.run(jaw + ": validate", progress, [&] { return requireValid(mesh, teeth); });
-    const QualityStats quality = measureQuality(mesh, options.tet.minDihedralDeg);
+    const QualityStats quality = measureQuality(mesh, options.tet.slivers.targetMinDihedralDeg);
     record["validation"] = toJson(report);
     record["quality"] = toJson(quality);
     record["mesh"] = {{"nodes", mesh.nodes.size()}, {"tets", mesh.tets.size()}};

@@ -62,12 +62,12 @@ const NumberKey kNumberKeys[] = {
     {"surface_plate_error_fraction", [](RunOptions& o) -> double& { return o.simplify.plateErrorFraction; }, 0, 1},
     {"surface_plate_edge_factor", [](RunOptions& o) -> double& { return o.simplify.plateEdgeFactor; }, 0, 1000},
     {"tet_radius_edge", [](RunOptions& o) -> double& { return o.tet.radiusEdgeRatio; }, -kAny, kAny},
-    {"tet_min_dihedral_deg", [](RunOptions& o) -> double& { return o.tet.minDihedralDeg; }, 0, 60},
+    {"tet_min_dihedral_deg", [](RunOptions& o) -> double& { return o.tet.slivers.targetMinDihedralDeg; }, 0, 60},
     {"tet_tetgen_min_dihedral_deg", [](RunOptions& o) -> double& { return o.tet.tetgenMinDihedralDeg; }, -1, 60},
     {"tet_pdl_edge_mm", [](RunOptions& o) -> double& { return o.tet.pdlEdgeMm; }, 0, 1000},
     {"tet_tooth_edge_mm", [](RunOptions& o) -> double& { return o.tet.toothEdgeMm; }, 0, 1000},
     {"tet_bone_edge_mm", [](RunOptions& o) -> double& { return o.tet.boneEdgeMm; }, 0, 1000},
-    {"tet_interface_push_mm", [](RunOptions& o) -> double& { return o.tet.sliverInterfacePushMm; }, 0, 0.05},
+    {"tet_interface_push_mm", [](RunOptions& o) -> double& { return o.tet.slivers.interfacePushMm; }, 0, 0.05},
 };
 
 void checkRanges(const std::string& name, RunOptions& o) {

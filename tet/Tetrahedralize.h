@@ -1,4 +1,7 @@
-// Labeled, quality tetrahedral mesh of a multi-material interface complex, with TetGen 1.5.
+// Labeled, quality tetrahedral mesh of a multi-material interface complex, with TetGen 1.5: holes
+// repaired first (tet/RepairHoles.h), TetGen run through tet/TetgenAdapter.h on a ladder of
+// settings (tet/Tetrahedralize.cpp), tets labeled from the interface sides (tet/LabelFromSides.h),
+// slivers improved (tet/ImproveSlivers.h), optional refinement rounds (tet/RefineComplex.h).
 #pragma once
 
 #include "filters/FillSurfaceHoles.h"
@@ -17,10 +20,9 @@ namespace jawmesh {
 /// volume of a regular tet of that edge (L^3 / (6 sqrt 2)); 0 leaves that region unbounded.
 struct TetOptions {
     double radiusEdgeRatio = 1.5;   ///< TetGen -q bound on circumradius / shortest edge (> 1.0)
-    double minDihedralDeg = 10.0;   ///< target minimum dihedral angle of every tet (TetGen -q/<deg>)
-    /// Dihedral bound given to TetGen's refinement (-q/<deg>) when >= 0; below 0 it is
-    /// minDihedralDeg. TetGen refines with Steiner points towards it; the sliver improvement after
-    /// TetGen always aims at minDihedralDeg.
+    /// Dihedral bound given to TetGen's refinement (-q/<deg>) when >= 0; below 0 it is the target,
+    /// slivers.targetMinDihedralDeg. TetGen refines with Steiner points towards it; the sliver
+    /// improvement after TetGen always aims at the target.
     double tetgenMinDihedralDeg = -1.0;
     double boneEdgeMm = 0.0;        ///< target edge length in bone (coarse)
     double toothEdgeMm = 0.0;       ///< target edge length in teeth (medium)
@@ -35,13 +37,17 @@ struct TetOptions {
     /// crashes instead of throwing on intersecting facets, so turning this off is only safe for
     /// input known to be clean.
     bool checkIntersections = true;
-    int repairAttempts = 2;         ///< extra runs with stronger optimisation when min dihedral is low
-    /// After TetGen, raise tets below minDihedralDeg by smoothing, flips and splits inside the
+    /// Extra TetGen runs (the rungs of tet/Tetrahedralize.cpp's ladder, at most 2) while tets under
+    /// the target are left.
+    int repairAttempts = 2;
+    /// After TetGen, raise tets below the target by smoothing, flips and splits inside the
     /// regions (tet/ImproveSlivers.h); interfaces are untouched but for its last resort's pushes.
     bool improveSlivers = true;
-    int sliverLookaheadDepth = 1;   ///< SliverOptions::lookaheadDepth of that improvement
-    double sliverInterfacePushMm = 0.005;  ///< SliverOptions::interfacePushMm of that improvement
-    /// Rounds of local refinement when tets under minDihedralDeg are left: the surface edges
+    /// That improvement's options. Its targetMinDihedralDeg is the stage's target minimum dihedral
+    /// angle of every tet, degrees, in [0, 70): TetGen's -q/<deg> unless tetgenMinDihedralDeg is
+    /// set, the improver's target, and what the repair runs and refinement rounds count tets under.
+    SliverOptions slivers;
+    /// Rounds of local refinement when tets under the target are left: the surface edges
     /// around them are split at their midpoints (the surface does not move) and the kept run is
     /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h). Off by
     /// default: the surface's error bound (SimplifyInterfaces.h) is checked at the vertices,
@@ -63,7 +69,7 @@ struct TetStats {
     std::size_t outsideTetsRemoved = 0; ///< tets in enclosed cavities without a seed (attribute 0)
     double minDihedralDeg = 0;
     double maxRadiusEdge = 0;
-    std::size_t belowMinDihedral = 0;   ///< tets still below options.minDihedralDeg (0 when met)
+    std::size_t belowMinDihedral = 0;   ///< tets still below options.slivers.targetMinDihedralDeg (0 when met)
     SliverStats slivers;                ///< what the sliver improvement did on the kept run
     std::vector<std::string> failedAttempts; ///< repair runs that failed (switches: reason); the kept run stands
     int refineRounds = 0;               ///< refinement rounds kept (TetOptions::refineRounds)
@@ -90,7 +96,7 @@ double tetVolumeForEdge(double edgeMm);
 /// cannot mislabel a region (without it, from the seeds' TetGen attributes). Tets on the outside
 /// side of an interface (enclosed cavities) are dropped; unused nodes are removed; tets are oriented
 /// positively; slivers are then improved (tet/ImproveSlivers.h). When the minimum dihedral is
-/// still below options.minDihedralDeg, TetGen is re-run with stronger optimisation up to
+/// still below the target (options.slivers.targetMinDihedralDeg), TetGen is re-run with stronger optimisation up to
 /// options.repairAttempts times and the best mesh is kept (stats->belowMinDihedral says whether
 /// the bound was met).
 /// Throws Error when the complex is malformed (sizes, indices, no seeds, seed label 0) or TetGen

@@ -3,8 +3,8 @@
 // reader's message and a non-zero exit; an immediate rerun reuses the 6 in seconds; after one
 // finished mesh is deleted (and a batch redoing it is killed mid-task), the rerun redoes exactly
 // that case, with identical outputs.
-#include "batch/ChildProcess.h"
 #include "batch/Manifest.h"
+#include "io/ChildProcess.h"
 #include "support/TestData.h"
 
 #include <gtest/gtest.h>

@@ -3,7 +3,6 @@
 // (exit codes, crashes, peak memory), the folder lock, the Slurm script and the summary.
 #include "batch/BatchLayout.h"
 #include "batch/Checksum.h"
-#include "batch/ChildProcess.h"
 #include "batch/Dataset.h"
 #include "batch/FolderLock.h"
 #include "batch/Manifest.h"
@@ -12,6 +11,7 @@
 #include "batch/Schedule.h"
 #include "batch/SlurmScript.h"
 #include "batch/Summary.h"
+#include "io/ChildProcess.h"
 #include "io/Error.h"
 #include "support/TestData.h"
 

@@ -1,7 +1,7 @@
 // A user interrupt stops `jawmesh run` cleanly: Ctrl-C (SIGINT) and SIGTERM (kill, scancel) make
 // the run stop at its next safe point with exit code 130, and leave no output: no jaw folder, no
 // staging folder, no temporary file.
-#include "batch/ChildProcess.h"
+#include "io/ChildProcess.h"
 #include "support/TestData.h"
 #include "support_CliRun.h"
 

@@ -67,8 +67,8 @@ TEST(RefineComplex, RoundsLeaveFewerBadTetsOnAThinPdlWithTheSameSurface) {
     o.radiusEdgeRatio = 2.0;
     o.repairAttempts = 0;
     o.refineRounds = 0;
-    o.sliverLookaheadDepth = 0;  // the rounds on their own (and the lookahead takes minutes here)
-    o.sliverInterfacePushMm = 0; // the surface must stay where it is
+    o.slivers.lookaheadDepth = 0;  // the rounds on their own (and the lookahead takes minutes here)
+    o.slivers.interfacePushMm = 0; // the surface must stay where it is
     const InterfaceComplex plc = test::thinPdlComplex(0.04, 2);
     TetStats plain, refined;
     const TetMesh a = tetrahedralize(plc, o, noProgress(), &plain);

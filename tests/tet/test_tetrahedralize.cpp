@@ -25,7 +25,7 @@ namespace {
 TetOptions gradedOptions() {
     TetOptions o;
     o.radiusEdgeRatio = 1.5;
-    o.minDihedralDeg = 10.0;
+    o.slivers.targetMinDihedralDeg = 10.0;
     o.pdlEdgeMm = 0.6;
     o.toothEdgeMm = 1.0;
     o.boneEdgeMm = 2.0;
@@ -262,7 +262,7 @@ TEST(Tetrahedralize, TetgenDihedralBoundIsSeparateFromTheTarget) {
     EXPECT_NE(s.switches.find("/0a"), std::string::npos) << s.switches;
     EXPECT_TRUE(validateTetMesh(m, {24, 25}).valid());
     EXPECT_EQ(s.belowMinDihedral, 0u) << "min dihedral " << s.minDihedralDeg;
-    EXPECT_GE(s.minDihedralDeg, o.minDihedralDeg);
+    EXPECT_GE(s.minDihedralDeg, o.slivers.targetMinDihedralDeg);
     o.tetgenMinDihedralDeg = 70.0;
     EXPECT_THROW(tetrahedralize(plc, o), Error);
 }
