@@ -1,3 +1,5 @@
+// The simplification of SimplifyInterfaces.h: the serial edge-collapse simplifier of one block,
+// the block partition and its passes, and simplifyInterfaces with its checks and statistics.
 #include "filters/SimplifyInterfaces.h"
 
 #include "filters/NearTeeth.h"
@@ -7,11 +9,13 @@
 #include "io/ResourceUsage.h"
 
 #include "filters/SelfIntersections.h"
+#include "filters/SeparatedByPlane.h"
+#include "filters/SimplifyState.h"
 #include "filters/SplitCorners.h"
 #include "filters/ShellSeeds.h"
+#include "filters/TriangleBoxGrid.h"
 #include "filters/TriangleGeometry.h"
 #include "io/Error.h"
-#include "io/VertexTriangles.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -26,179 +30,11 @@
 namespace jawmesh {
 namespace {
 
-
-/// Symmetric 4x4 plane quadric (Garland-Heckbert): sum of w * (n.p + d)^2.
-struct Quadric {
-    double q[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-    void addPlane(const Vec3& n, double d, double w) {
-        const double a = n.x(), b = n.y(), c = n.z();
-        const double v[10] = {a * a, a * b, a * c, a * d, b * b, b * c, b * d, c * c, c * d, d * d};
-        for (int i = 0; i < 10; ++i) q[i] += w * v[i];
-    }
-    void add(const Quadric& o) {
-        for (int i = 0; i < 10; ++i) q[i] += o.q[i];
-    }
-    double eval(const Vec3& p) const {
-        const double x = p.x(), y = p.y(), z = p.z();
-        return q[0] * x * x + 2 * q[1] * x * y + 2 * q[2] * x * z + 2 * q[3] * x + q[4] * y * y + 2 * q[5] * y * z +
-               2 * q[6] * y + q[7] * z * z + 2 * q[8] * z + q[9];
-    }
-};
-
-struct PairRule {
-    double errorMm;     ///< bound for input vertices near a tooth (all of them off bone/outside)
-    double maxEdgeMm;
-    double farErrorMm;  ///< bound for input vertices far from every tooth
-};
-
-/// Uniform grid of triangle boxes: a triangle is listed in every cell its box meets (cells of a
-/// few fine triangles, so queries stay local). Entries carry the triangle's version; moving or
-/// deleting a triangle bumps it, so stale entries are skipped without searching the cells.
-class BoxGrid {
-public:
-    explicit BoxGrid(double cellMm) : cell_(cellMm) {}
-
-    void place(std::int32_t t, const BBox& box) {
-        if (std::size_t(t) >= version_.size()) {
-            version_.resize(std::size_t(t) + 1, 0);
-            seen_.resize(std::size_t(t) + 1, 0);
-        }
-        const std::uint32_t ver = ++version_[std::size_t(t)];
-        forCells(box, [&](std::uint64_t key) { cells_[key].push_back({t, ver}); });
-    }
-
-    void remove(std::int32_t t) { ++version_[std::size_t(t)]; }
-
-    /// Calls f(t) once for every live triangle listed in a cell that `box` meets.
-    template <typename F>
-    void query(const BBox& box, F&& f) {
-        ++queryId_;
-        forCells(box, [&](std::uint64_t key) {
-            const auto it = cells_.find(key);
-            if (it == cells_.end()) return;
-            auto& entries = it->second;
-            std::size_t keep = 0;
-            for (std::size_t i = 0; i < entries.size(); ++i) {
-                const Entry e = entries[i];
-                if (version_[std::size_t(e.t)] != e.version) continue;  // stale: drop it
-                entries[keep++] = e;
-                if (seen_[std::size_t(e.t)] == queryId_) continue;
-                seen_[std::size_t(e.t)] = queryId_;
-                f(e.t);
-            }
-            entries.resize(keep);
-        });
-    }
-
-private:
-    struct Entry {
-        std::int32_t t;
-        std::uint32_t version;
-    };
-    template <typename F>
-    void forCells(const BBox& box, F&& f) const {
-        const auto c = [&](double x) { return int(std::floor(x / cell_)); };
-        const int x0 = c(box.min.x()), x1 = c(box.max.x()), y0 = c(box.min.y()), y1 = c(box.max.y());
-        const int z0 = c(box.min.z()), z1 = c(box.max.z());
-        for (int x = x0; x <= x1; ++x)
-            for (int y = y0; y <= y1; ++y)
-                for (int z = z0; z <= z1; ++z) f(keyOf(x, y, z));
-    }
-    static std::uint64_t keyOf(int x, int y, int z) {
-        const auto m = [](int v) { return std::uint64_t(std::uint32_t(v + (1 << 20)) & 0x1FFFFF); };
-        return (m(x) << 42) | (m(y) << 21) | m(z);
-    }
-    double cell_;
-    std::unordered_map<std::uint64_t, std::vector<Entry>> cells_;
-    std::vector<std::uint32_t> version_;
-    std::vector<std::uint32_t> seen_;
-    std::uint32_t queryId_ = 0;
-};
-
-/// Floating-point filter before the exact test: true when every corner of b not shared with a
-/// lies clearly on one side of a's plane (margin far above rounding), so they cannot intersect
-/// other than at what they share.
-bool separatedByPlane(const Vec3 a[3], const Tri& ia, const Vec3 b[3], const Tri& ib) {
-    // Two triangles on one edge meet only when folded onto each other: apexes clearly on opposite
-    // sides of the edge (seen across it) rules that out, coplanar or not.
-    int sa[3], sb[3], shared = 0;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            if (ia[i] == ib[j]) {
-                sa[shared] = i;
-                sb[shared] = j;
-                ++shared;
-            }
-    if (shared == 2) {
-        const Vec3& s = a[sa[0]];
-        const Vec3 e = (a[sa[1]] - s).normalized();
-        Vec3 da = a[3 - sa[0] - sa[1]] - s, db = b[3 - sb[0] - sb[1]] - s;
-        da -= e * e.dot(da);
-        db -= e * e.dot(db);
-        return da.dot(db) < -1e-9 * da.norm() * db.norm();
-    }
-    const Vec3 n = (a[1] - a[0]).cross(a[2] - a[0]);
-    const double scale = (a[1] - a[0]).squaredNorm() + (a[2] - a[0]).squaredNorm() + (b[0] - a[0]).squaredNorm() +
-                         (b[1] - a[0]).squaredNorm() + (b[2] - a[0]).squaredNorm();
-    const double margin = 1e-12 * scale * std::sqrt(scale);
-    int above = 0, below = 0, free = 0;
-    for (int k = 0; k < 3; ++k) {
-        if (ib[k] == ia[0] || ib[k] == ia[1] || ib[k] == ia[2]) continue;
-        ++free;
-        const double d = n.dot(b[k] - a[0]);
-        if (d > margin) ++above;
-        else if (d < -margin) ++below;
-    }
-    return free > 0 && (above == free || below == free);
-}
-
-/// The input surface around each input vertex, for the distance from new triangles back to it.
-struct InputSurface {
-    const std::vector<Tri>* tris = nullptr;
-    VertexTriangles around;
-
-    explicit InputSurface(const InterfaceComplex& input)
-        : tris(&input.surface.triangles), around(vertexTriangles(input.surface.triangles, input.surface.vertices.size())) {}
-    template <typename F>
-    bool anyAround(std::int32_t v, F&& f) const {
-        for (const std::int32_t* t = around.begin(v); t != around.end(v); ++t)
-            if (f(*t)) return true;
-        return false;
-    }
-};
-
-/// The mesh between passes, in input vertex ids (input vertices never move, so an id is also a
-/// position). Triangles carry the input vertices they stand for (their error is tracked).
-struct State {
-    const std::vector<Vec3>* points = nullptr;   ///< the input vertices
-    const InputSurface* input = nullptr;         ///< the input triangles around each input vertex
-    std::vector<Tri> tris;
-    std::vector<std::array<Label, 2>> sides;
-    std::vector<std::vector<std::int32_t>> pts;  ///< per triangle: removed input vertices it carries
-    std::vector<Quadric> quadrics;               ///< per input vertex
-    std::vector<float> err;                      ///< per input vertex: distance to its output triangle
-    std::vector<char> nearTeeth;                 ///< per input vertex (filters/NearTeeth.h)
-    const std::vector<float>* plateMm = nullptr; ///< per input vertex: thin plate it bounds (PlateThickness.h)
-    /// per corner of the input: error its triangles' samples already have (InterfaceComplex::sampleErrorMm)
-    const std::vector<float>* spentMm = nullptr;
-    std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts;  ///< per curve edge
-};
-
-/// One block of a pass: its triangles (indices into State::tris) and, for the intersection test
-/// only, the triangles of other blocks near it.
-struct Block {
-    std::vector<std::int32_t> tris;
-    std::vector<std::int32_t> obstacles;
-};
-
-struct BlockResult {
-    std::vector<Tri> tris;
-    std::vector<std::array<Label, 2>> sides;
-    std::vector<std::vector<std::int32_t>> pts;
-    std::vector<std::uint64_t> takenCurves;  ///< curve keys this block owned (replaced by curves)
-    std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curves;
-    std::size_t collapses = 0;
-};
+using simplify::Block;
+using simplify::BlockResult;
+using simplify::InputSurface;
+using simplify::PairRule;
+using simplify::State;
 
 /// Serial simplification of one block. Vertices on the block border (with triangles in other
 /// blocks) are frozen: they neither move nor take a collapse (their star is incomplete here).
@@ -896,7 +732,7 @@ private:
     std::vector<std::int32_t> near_;    ///< newTrianglesNearInput's input vertices
     std::vector<Vec3> nearPos_;         ///< and their positions
     std::unordered_map<int, PairRule> rules_;
-    BoxGrid grid_;
+    TriangleBoxGrid grid_;
     double cosTurn_ = 0.5;
     double cosMinAngle_ = 0.94;
     std::size_t collapses_ = 0;
