@@ -1,29 +1,24 @@
-// The simplification of SimplifyInterfaces.h: the block partition and its passes (each block
-// simplified by BlockSimplifier.h), and simplifyInterfaces with its checks and statistics.
+// The simplification of SimplifyInterfaces.h: argument checks, the starting state (quadrics,
+// carried vertices, thin plates), the passes (SimplifyPasses.h) with an exhaustive rerun when the
+// output check finds an intersection, and the output's statistics.
 #include "filters/SimplifyInterfaces.h"
 
-#include "filters/BlockSimplifier.h"
 #include "filters/NearTeeth.h"
 #include "filters/PlateThickness.h"
 #include "filters/RegionWedges.h"
-#include "io/Angles.h"
-#include "io/ResourceUsage.h"
-
 #include "filters/SelfIntersections.h"
+#include "filters/ShellSeeds.h"
+#include "filters/SimplifyPasses.h"
 #include "filters/SimplifyState.h"
 #include "filters/SplitCorners.h"
-#include "filters/ShellSeeds.h"
 #include "filters/TriangleGeometry.h"
 #include "io/Error.h"
-
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
+#include "io/ResourceUsage.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <unordered_map>
+#include <limits>
 
 namespace jawmesh {
 
@@ -83,115 +78,109 @@ std::string interfaceKind(Label a, Label b) {
 
 namespace {
 
-using simplify::Block;
-using simplify::BlockResult;
 using simplify::InputSurface;
 using simplify::State;
 
-/// Splits the live triangles into cubic blocks (by centroid, grid shifted by offsetMm), marks the
-/// vertices shared by two blocks as border, and gives every block the nearby triangles of its
-/// neighbours as obstacles. blockMm <= 0: one block with everything, no border.
-std::vector<Block> makeBlocks(const State& st, double blockMm, double offsetMm, double marginMm,
-                              std::vector<char>& border) {
-    const std::size_t nt = st.tris.size();
-    border.assign(st.points->size(), 0);
-    if (blockMm <= 0) {
-        Block all;
-        all.tris.resize(nt);
-        for (std::size_t t = 0; t < nt; ++t) all.tris[t] = std::int32_t(t);
-        return {all};
-    }
-    const auto& P = *st.points;
-    using Cell = std::array<int, 3>;
-    std::vector<Cell> cellOf(nt);
-    std::map<Cell, std::size_t> index;
-    for (std::size_t t = 0; t < nt; ++t) {
-        const Tri& f = st.tris[t];
-        const Vec3 c = (P[std::size_t(f[0])] + P[std::size_t(f[1])] + P[std::size_t(f[2])]) / 3.0;
-        for (int k = 0; k < 3; ++k) cellOf[t][std::size_t(k)] = int(std::floor((c[k] - offsetMm) / blockMm));
-        index.emplace(cellOf[t], 0);
-    }
-    std::size_t n = 0;
-    for (auto& [cell, i] : index) i = n++;  // blocks in cell order: deterministic
-    std::vector<Block> blocks(n);
-    std::vector<std::int32_t> owner(P.size(), -1);
-    for (std::size_t t = 0; t < nt; ++t) {
-        const std::size_t b = index.at(cellOf[t]);
-        blocks[b].tris.push_back(std::int32_t(t));
-        for (std::int32_t v : st.tris[t]) {
-            if (owner[std::size_t(v)] < 0) owner[std::size_t(v)] = std::int32_t(b);
-            else if (owner[std::size_t(v)] != std::int32_t(b)) border[std::size_t(v)] = 1;
-        }
-    }
-    // Obstacles: a neighbour's triangle whose box comes within marginMm of the block's cell.
-    for (std::size_t t = 0; t < nt; ++t) {
-        const Tri& f = st.tris[t];
-        BBox box;
-        for (std::int32_t v : f) box.extend(P[std::size_t(v)]);
-        const Cell& c = cellOf[t];
-        // Per axis, which neighbours (-1, +1) the box comes near; most triangles sit inside their
-        // cell and skip the 26 lookups (the test below then decides exactly, as before).
-        bool reach[3][2];
-        for (int k = 0; k < 3; ++k) {
-            reach[k][0] = box.min[k] <= c[std::size_t(k)] * blockMm + offsetMm + marginMm;
-            reach[k][1] = box.max[k] >= (c[std::size_t(k)] + 1) * blockMm + offsetMm - marginMm;
-        }
-        if (!(reach[0][0] || reach[0][1] || reach[1][0] || reach[1][1] || reach[2][0] || reach[2][1])) continue;
-        const auto skip = [&](int k, int d) { return d != 0 && !reach[k][d > 0 ? 1 : 0]; };
-        for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    if (!dx && !dy && !dz) continue;
-                    if (skip(0, dx) || skip(1, dy) || skip(2, dz)) continue;
-                    const Cell nb{c[0] + dx, c[1] + dy, c[2] + dz};
-                    const auto it = index.find(nb);
-                    if (it == index.end()) continue;
-                    bool near = true;
-                    for (int k = 0; k < 3 && near; ++k) {
-                        const double lo = nb[std::size_t(k)] * blockMm + offsetMm - marginMm;
-                        const double hi = (nb[std::size_t(k)] + 1) * blockMm + offsetMm + marginMm;
-                        near = box.max[k] >= lo && box.min[k] <= hi;
-                    }
-                    if (near) blocks[it->second].obstacles.push_back(std::int32_t(t));
-                }
-    }
-    return blocks;
+/// Throws Error unless every option is in its range.
+void checkOptions(const SimplifyOptions& options) {
+    for (double x : {options.toothErrorMm, options.pdlErrorMm, options.boneErrorMm, options.boneFarErrorMm, options.boneNearTeethMm,
+                     options.pdlMaxEdgeMm, options.capMaxEdgeMm, options.toothMaxEdgeMm, options.boneMaxEdgeMm,
+                     options.plateMaxMm, options.plateErrorFraction, options.plateEdgeFactor})
+        if (!(x >= 0) || !std::isfinite(x)) throw Error("simplification: error bounds and edge lengths must be >= 0");
+    if (!(options.minAngleDeg >= 0 && options.minAngleDeg < 60))
+        throw Error("simplification: minimum angle must be in [0, 60) degrees");
+    if (!(options.maxNormalTurnDeg > 0 && options.maxNormalTurnDeg <= 180))
+        throw Error("simplification: maximum normal turn must be in (0, 180] degrees");
+    if (!(options.minWedgeDeg >= 0 && options.minWedgeDeg < 90))
+        throw Error("simplification: minimum region wedge must be in [0, 90) degrees");
+    if (!(options.blockMm >= 0)) throw Error("simplification: block size must be >= 0");
 }
 
-/// One pass: every block simplified in parallel (blocks only write their own data), then the
-/// results put back in block order.
-std::size_t runPass(State& st, double blockMm, double offsetMm, const SimplifyOptions& o, Progress& progress,
-                    ProgressStage& stage, double from, double to) {
-    std::vector<char> border;
-    const double margin = 2.0 * std::max({o.boneMaxEdgeMm, o.toothMaxEdgeMm, o.pdlMaxEdgeMm});
-    const std::vector<Block> blocks = makeBlocks(st, blockMm, offsetMm, margin, border);
-    std::vector<BlockResult> results(blocks.size());
-    std::atomic<std::size_t> done{0};
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const auto& r) {
-        for (std::size_t b = r.begin(); b != r.end(); ++b) {
-            progress.checkCancelled();
-            simplify::BlockSimplifier s(st, blocks[b], border, o);
-            s.run(progress);
-            results[b] = s.result();
-            const std::size_t d = ++done;
-            if (tbb::this_task_arena::current_thread_index() == 0)
-                stage.update(from + (to - from) * double(d) / double(blocks.size()));
+/// Throws Error unless the input's per-triangle and per-vertex arrays have their sizes.
+void checkInputArrays(const InterfaceComplex& input) {
+    if (input.sides.size() != input.surface.triangles.size())
+        throw Error("simplification: one label pair per triangle is required");
+    if (!input.carried.empty() && input.carried.size() != input.surface.triangles.size())
+        throw Error("simplification: carried vertices must be given per triangle");
+    if (input.sampleErrorMm.size() > input.surface.vertices.size())
+        throw Error("simplification: more sample errors than vertices");
+}
+
+/// Throws Error unless the input's indices are in range; returns the number of corners (vertices
+/// past them are carried ones, which get no quadric).
+std::size_t checkedCorners(const InterfaceComplex& input) {
+    const std::size_t nv = input.surface.vertices.size();
+    std::size_t corners = 0;
+    for (const Tri& f : input.surface.triangles)
+        for (std::int32_t v : f) {
+            if (v < 0 || std::size_t(v) >= nv) throw Error("simplification: triangle index out of range");
+            corners = std::max(corners, std::size_t(v) + 1);
         }
-    });
-    State next;
-    std::size_t collapses = 0;
-    for (BlockResult& r : results) {
-        next.tris.insert(next.tris.end(), r.tris.begin(), r.tris.end());
-        next.sides.insert(next.sides.end(), r.sides.begin(), r.sides.end());
-        for (auto& p : r.pts) next.pts.push_back(std::move(p));
-        for (std::uint64_t key : r.takenCurves) st.curvePts.erase(key);
-        for (auto& [key, pts] : r.curves) st.curvePts[key] = std::move(pts);
-        collapses += r.collapses;
+    for (const auto& carried : input.carried)
+        for (std::int32_t v : carried)
+            if (v < std::int32_t(corners) || std::size_t(v) >= nv)
+                throw Error("simplification: a carried vertex must follow every corner");
+    return corners;
+}
+
+/// What the starting state refers to, measured once on the input.
+struct InputMeasures {
+    std::vector<char> nearTeeth;  ///< per input vertex (NearTeeth.h)
+    std::vector<float> plateMm;   ///< per input vertex: the thin plate it bounds, infinite off plates
+    InputSurface surface;
+};
+
+InputMeasures measureInput(const InterfaceComplex& input, const SimplifyOptions& options) {
+    std::vector<char> nearTeeth = verticesNearTeeth(input, options.boneNearTeethMm);
+    // Thin plates are measured near the teeth only (the crest, pinched PDL): far away the bone is
+    // millimetres thick, and the rays would cost seconds for nothing.
+    std::vector<float> plateMm =
+        options.plateMaxMm > 0 ? plateThicknessMm(input, nearTeeth, PlateOptions{options.plateMaxMm})
+                               : std::vector<float>(input.surface.vertices.size(), std::numeric_limits<float>::infinity());
+    return {std::move(nearTeeth), std::move(plateMm), InputSurface(input)};
+}
+
+/// The adaptive extraction's carried vertices start on their triangles, at their distance.
+void placeCarriedVertices(const InterfaceComplex& input, State& st) {
+    const auto& P = input.surface.vertices;
+    for (std::size_t t = 0; t < input.carried.size(); ++t) {
+        st.pts[t] = input.carried[t];
+        const Tri& f = st.tris[t];
+        for (std::int32_t p : st.pts[t])
+            st.err[std::size_t(p)] = float(std::sqrt(squaredDistanceToTriangle(P[std::size_t(p)], P[std::size_t(f[0])],
+                                                                               P[std::size_t(f[1])], P[std::size_t(f[2])])));
     }
-    st.tris = std::move(next.tris);
-    st.sides = std::move(next.sides);
-    st.pts = std::move(next.pts);
-    return collapses;
+}
+
+/// Every corner's quadric: the planes of its triangles, weighted by their areas.
+void addTriangleQuadrics(State& st) {
+    const auto& P = *st.points;
+    for (const Tri& f : st.tris) {
+        const Vec3 n2 = (P[std::size_t(f[1])] - P[std::size_t(f[0])]).cross(P[std::size_t(f[2])] - P[std::size_t(f[0])]);
+        const double len = n2.norm();
+        if (len == 0) continue;
+        const Vec3 n = n2 / len;
+        for (std::int32_t v : f) st.quadrics[std::size_t(v)].addPlane(n, -n.dot(P[std::size_t(f[0])]), 0.5 * len);
+    }
+}
+
+/// The input as the first pass takes it. Rebuilt rather than kept for a possible rerun: a copy
+/// would hold ~100 bytes per input vertex for the whole run (about 1.3 GB on a mandible).
+State startState(const InterfaceComplex& input, std::size_t corners, const InputMeasures& measures) {
+    State st;
+    st.points = &input.surface.vertices;
+    st.input = &measures.surface;
+    st.tris = input.surface.triangles;
+    st.sides = input.sides;
+    st.pts.resize(st.tris.size());
+    st.quadrics.resize(corners);
+    st.err.assign(input.surface.vertices.size(), 0.0f);
+    placeCarriedVertices(input, st);
+    st.nearTeeth = measures.nearTeeth;
+    st.plateMm = &measures.plateMm;
+    st.spentMm = &input.sampleErrorMm;
+    addTriangleQuadrics(st);
+    return st;
 }
 
 /// The state's live triangles as a compact complex (seeds not set).
@@ -213,103 +202,56 @@ InterfaceComplex complexOf(const State& st, const std::vector<Vec3>& points) {
     return out;
 }
 
+/// The output's sizes, errors, angles and wedges (the rest of SimplifyStats is the caller's).
+SimplifyStats measureOutput(const InterfaceComplex& input, const InterfaceComplex& out, const State& st,
+                            const InputMeasures& measures, double minWedgeDeg) {
+    SimplifyStats s;
+    const auto& plateMm = measures.plateMm;
+    s.plateVertices = std::size_t(std::count_if(plateMm.begin(), plateMm.end(), [](float x) { return std::isfinite(x); }));
+    s.inputTriangles = input.surface.triangles.size();
+    s.outputTriangles = out.surface.triangles.size();
+    s.outputVertices = out.surface.vertices.size();
+    s.maxErrorMm = st.err.empty() ? 0.0 : double(*std::max_element(st.err.begin(), st.err.end()));
+    for (std::size_t v = 0; v < st.err.size(); ++v)
+        if (measures.nearTeeth[v]) s.maxErrorNearTeethMm = std::max(s.maxErrorNearTeethMm, double(st.err[v]));
+    s.minAngleDeg = 180;
+    const double bins[] = {5, 10, 15, 20, 30, 40};
+    for (std::size_t t = 0; t < out.surface.triangles.size(); ++t) {
+        const Tri& f = out.surface.triangles[t];
+        const double a = minAngleDeg(out.surface.vertices[f[0]], out.surface.vertices[f[1]], out.surface.vertices[f[2]]);
+        s.minAngleDeg = std::min(s.minAngleDeg, a);
+        s.minAngleHistogram[std::size_t(std::upper_bound(std::begin(bins), std::end(bins), a) - std::begin(bins))]++;
+        s.trianglesPerKind[interfaceKind(out.sides[t][0], out.sides[t][1])]++;
+    }
+    const RegionWedgeStats wedges = measureRegionWedges(out, minWedgeDeg);
+    s.minWedgeDeg = wedges.smallestDeg;
+    s.edgesBelowMinWedge = wedges.edgesBelow;
+    return s;
+}
+
 }  // namespace
 
 InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const SimplifyOptions& options,
                                     Progress& progress, SimplifyStats* stats) {
     const auto start = std::chrono::steady_clock::now();
-    if (input.sides.size() != input.surface.triangles.size())
-        throw Error("simplification: one label pair per triangle is required");
-    if (!input.carried.empty() && input.carried.size() != input.surface.triangles.size())
-        throw Error("simplification: carried vertices must be given per triangle");
-    if (input.sampleErrorMm.size() > input.surface.vertices.size())
-        throw Error("simplification: more sample errors than vertices");
-    for (double x : {options.toothErrorMm, options.pdlErrorMm, options.boneErrorMm, options.boneFarErrorMm, options.boneNearTeethMm,
-                     options.pdlMaxEdgeMm, options.capMaxEdgeMm, options.toothMaxEdgeMm, options.boneMaxEdgeMm,
-                     options.plateMaxMm, options.plateErrorFraction, options.plateEdgeFactor})
-        if (!(x >= 0) || !std::isfinite(x)) throw Error("simplification: error bounds and edge lengths must be >= 0");
-    if (!(options.minAngleDeg >= 0 && options.minAngleDeg < 60))
-        throw Error("simplification: minimum angle must be in [0, 60) degrees");
-    if (!(options.maxNormalTurnDeg > 0 && options.maxNormalTurnDeg <= 180))
-        throw Error("simplification: maximum normal turn must be in (0, 180] degrees");
-    if (!(options.minWedgeDeg >= 0 && options.minWedgeDeg < 90))
-        throw Error("simplification: minimum region wedge must be in [0, 90) degrees");
-    if (!(options.blockMm >= 0)) throw Error("simplification: block size must be >= 0");
-    const std::size_t nv = input.surface.vertices.size();
-    std::size_t corners = 0;  // vertices past the corners are carried ones (quadrics only for corners)
-    for (const Tri& f : input.surface.triangles)
-        for (std::int32_t v : f) {
-            if (v < 0 || std::size_t(v) >= nv) throw Error("simplification: triangle index out of range");
-            corners = std::max(corners, std::size_t(v) + 1);
-        }
-    for (const auto& carried : input.carried)
-        for (std::int32_t v : carried)
-            if (v < std::int32_t(corners) || std::size_t(v) >= nv)
-                throw Error("simplification: a carried vertex must follow every corner");
+    checkInputArrays(input);
+    checkOptions(options);
+    const std::size_t corners = checkedCorners(input);
     ProgressStage stage(progress, "simplify interfaces");
-
-    // The starting state is rebuilt rather than kept for a possible rerun: a copy would hold
-    // ~100 bytes per input vertex for the whole run (about 1.3 GB on a mandible).
-    const auto& P = input.surface.vertices;
-    std::vector<char> nearTeeth = verticesNearTeeth(input, options.boneNearTeethMm);
-    // Thin plates are measured near the teeth only (the crest, pinched PDL): far away the bone is
-    // millimetres thick, and the rays would cost seconds for nothing.
-    const std::vector<float> plateMm =
-        options.plateMaxMm > 0 ? plateThicknessMm(input, nearTeeth, PlateOptions{options.plateMaxMm})
-                               : std::vector<float>(nv, std::numeric_limits<float>::infinity());
-    const InputSurface inputSurface(input);
-    const auto startState = [&] {
-        State st;
-        st.points = &P;
-        st.input = &inputSurface;
-        st.tris = input.surface.triangles;
-        st.sides = input.sides;
-        st.pts.resize(st.tris.size());
-        st.quadrics.resize(corners);
-        st.err.assign(nv, 0.0f);
-        // The adaptive extraction's carried vertices start on their triangles, at their distance.
-        for (std::size_t t = 0; t < input.carried.size(); ++t) {
-            st.pts[t] = input.carried[t];
-            const Tri& f = st.tris[t];
-            for (std::int32_t p : st.pts[t])
-                st.err[std::size_t(p)] = float(std::sqrt(squaredDistanceToTriangle(P[std::size_t(p)], P[std::size_t(f[0])],
-                                                                                   P[std::size_t(f[1])], P[std::size_t(f[2])])));
-        }
-        st.nearTeeth = nearTeeth;
-        st.plateMm = &plateMm;
-        st.spentMm = &input.sampleErrorMm;
-        for (const Tri& f : st.tris) {
-            const Vec3 n2 = (P[std::size_t(f[1])] - P[std::size_t(f[0])]).cross(P[std::size_t(f[2])] - P[std::size_t(f[0])]);
-            const double len = n2.norm();
-            if (len == 0) continue;
-            const Vec3 n = n2 / len;
-            for (std::int32_t v : f) st.quadrics[std::size_t(v)].addPlane(n, -n.dot(P[std::size_t(f[0])]), 0.5 * len);
-        }
-        return st;
-    };
-    State st = startState();
-    // Blocks, blocks shifted by half a block (the first pass's borders inside), then everything.
-    std::size_t collapses = 0;
-    const auto simplify = [&](const SimplifyOptions& o) {
-        if (o.blockMm > 0) {
-            collapses += runPass(st, o.blockMm, 0.0, o, progress, stage, 0.0, 0.6);
-            collapses += runPass(st, o.blockMm, 0.5 * o.blockMm, o, progress, stage, 0.6, 0.9);
-        }
-        collapses += runPass(st, 0.0, 0.0, o, progress, stage, 0.9, 0.97);
-    };
-    simplify(options);
-    InterfaceComplex out = complexOf(st, P);
+    const InputMeasures measures = measureInput(input, options);
+    State st = startState(input, corners, measures);
+    std::size_t collapses = simplify::simplifyInPasses(st, options, progress, stage);
+    InterfaceComplex out = complexOf(st, input.surface.vertices);
     SelfIntersectionReport check = findSelfIntersections(out.surface);
     bool rerun = false;
     if (!check.pairs.empty() && !options.exhaustiveIntersectionChecks) {
         // The local test missed two sheets meeting away from the collapse: start again with the
         // exhaustive test (slower, but every collapse is then checked against everything).
-        st = startState();
-        collapses = 0;
+        st = startState(input, corners, measures);
         SimplifyOptions exhaustive = options;
         exhaustive.exhaustiveIntersectionChecks = true;
-        simplify(exhaustive);
-        out = complexOf(st, P);
+        collapses = simplify::simplifyInPasses(st, exhaustive, progress, stage);
+        out = complexOf(st, input.surface.vertices);
         check = findSelfIntersections(out.surface);
         rerun = true;
     }
@@ -320,30 +262,10 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
     out.seeds = seedsInsideShells(out);  // grid seeds may have left a thin region (ShellSeeds.h)
     SimplifyStats local;
     SimplifyStats& s = stats ? *stats : local;
-    s = SimplifyStats{};
+    s = measureOutput(input, out, st, measures, options.minWedgeDeg);
     s.exhaustiveRerun = rerun;
     s.cornerSplits = cornerSplits;
-    s.plateVertices = std::size_t(std::count_if(plateMm.begin(), plateMm.end(), [](float x) { return std::isfinite(x); }));
-
-    s.inputTriangles = input.surface.triangles.size();
-    s.outputTriangles = out.surface.triangles.size();
-    s.outputVertices = out.surface.vertices.size();
     s.collapses = collapses;
-    s.maxErrorMm = st.err.empty() ? 0.0 : double(*std::max_element(st.err.begin(), st.err.end()));
-    for (std::size_t v = 0; v < st.err.size(); ++v)
-        if (nearTeeth[v]) s.maxErrorNearTeethMm = std::max(s.maxErrorNearTeethMm, double(st.err[v]));
-    s.minAngleDeg = 180;
-    const double bins[] = {5, 10, 15, 20, 30, 40};
-    for (std::size_t t = 0; t < out.surface.triangles.size(); ++t) {
-        const Tri& f = out.surface.triangles[t];
-        const double a = minAngleDeg(out.surface.vertices[f[0]], out.surface.vertices[f[1]], out.surface.vertices[f[2]]);
-        s.minAngleDeg = std::min(s.minAngleDeg, a);
-        s.minAngleHistogram[std::size_t(std::upper_bound(std::begin(bins), std::end(bins), a) - std::begin(bins))]++;
-        s.trianglesPerKind[interfaceKind(out.sides[t][0], out.sides[t][1])]++;
-    }
-    const RegionWedgeStats wedges = measureRegionWedges(out, options.minWedgeDeg);
-    s.minWedgeDeg = wedges.smallestDeg;
-    s.edgesBelowMinWedge = wedges.edgesBelow;
     s.seconds = secondsSince(start);
     return out;
 }
