@@ -29,6 +29,8 @@
 //    new triangle against every triangle its box meets (a uniform grid), which cannot miss.
 // Parallel by blocks (SimplifyOptions::blockMm); deterministic whatever the thread count (blocks
 // are independent and merged in a fixed order; ties broken by vertex ids).
+// Implementation: SimplifyPasses.h (blocks and passes), BlockSimplifier.h (the collapse queue of
+// a block), CollapseCheck.h (the conditions above, in order), BlockMesh.h (a block's mesh).
 #pragma once
 
 #include "filters/AdaptiveCells.h"

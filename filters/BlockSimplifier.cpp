@@ -1,0 +1,79 @@
+// The collapse queue of one block (BlockSimplifier.h).
+#include "filters/BlockSimplifier.h"
+
+#include <algorithm>
+
+namespace jawmesh::simplify {
+
+BlockSimplifier::BlockSimplifier(State& state, const Block& block, const std::vector<char>& border,
+                                 const SimplifyOptions& options)
+    : mesh_(state, block, border, options), check_(mesh_) {
+    stamp_.assign(mesh_.pos.size(), 0);
+}
+
+void BlockSimplifier::run(Progress& progress) {
+    const std::size_t nv = mesh_.pos.size();
+    for (std::size_t u = 0; u < nv; ++u) schedule(std::int32_t(u));
+    std::size_t popped = 0;
+    while (!heap_.empty()) {
+        const Candidate c = heap_.top();
+        heap_.pop();
+        if (++popped % 65536 == 0) progress.checkCancelled();
+        if (mesh_.dead[std::size_t(c.u)] || stamp_[std::size_t(c.u)] != c.stamp) continue;
+        if (!check_.plan(c.u, c.v, plan_)) {
+            schedule(c.u, true, c.v);  // terminates: unchanged state gives the same verdict
+            continue;
+        }
+        mesh_.apply(c.u, c.v, plan_);
+        ++collapses_;
+        // Everything whose neighbourhood changed gets a fresh candidate.
+        ring_.clear();
+        mesh_.neighbours(c.v, ring_);
+        const std::vector<std::int32_t> ring = ring_;
+        schedule(c.v);
+        for (std::int32_t w : ring) schedule(w);
+    }
+}
+
+BlockResult BlockSimplifier::result() {
+    BlockResult r = mesh_.result();
+    r.collapses = collapses_;
+    return r;
+}
+
+/// The ranking: the quadric error of u's and v's planes at v, plus a little of the edge's length
+/// (ties). No check: a candidate is checked when it is popped.
+double BlockSimplifier::collapseCost(std::int32_t u, std::int32_t v) const {
+    Quadric q = mesh_.q[std::size_t(u)];
+    q.add(mesh_.q[std::size_t(v)]);
+    return std::max(0.0, q.eval(mesh_.pos[std::size_t(v)])) +
+           1e-6 * (mesh_.pos[std::size_t(u)] - mesh_.pos[std::size_t(v)]).squaredNorm();
+}
+
+/// Pushes u's cheapest collapse toward a neighbour: lazily the cheapest by cost alone, or when
+/// `full` the cheapest that passes every check, none when no neighbour does. `failed`: the
+/// neighbour whose collapse was just refused (nothing changed since: not checked again). The
+/// full mode runs the whole check, not its cheap tests only: otherwise a collapse the pop then
+/// refuses could be queued again after another refusal (only the last one is skipped), for ever.
+void BlockSimplifier::schedule(std::int32_t u, bool full, std::int32_t failed) {
+    ++stamp_[std::size_t(u)];
+    if (mesh_.dead[std::size_t(u)] || mesh_.frozen[std::size_t(u)] || mesh_.vtris[std::size_t(u)].empty()) return;
+    cand_.clear();
+    mesh_.neighbours(u, cand_);
+    costs_.clear();
+    for (std::int32_t v : cand_) costs_.emplace_back(collapseCost(u, v), v);
+    std::sort(costs_.begin(), costs_.end());
+    if (!full) {
+        // Lazy: rank by cost only; the pop validates, and only a failure pays for checking
+        // every neighbour (most vertices are collapsed toward their cheapest neighbour).
+        heap_.push(Candidate{costs_.front().first, u, costs_.front().second, stamp_[std::size_t(u)]});
+        return;
+    }
+    for (const auto& [cost, v] : costs_)
+        if (v != failed && check_.plan(u, v, scratchPlan_)) {
+            heap_.push(Candidate{cost, u, v, stamp_[std::size_t(u)]});
+            return;
+        }
+}
+
+}  // namespace jawmesh::simplify

@@ -1,0 +1,147 @@
+// The block partition and the passes of the simplification (SimplifyPasses.h).
+#include "filters/SimplifyPasses.h"
+
+#include "filters/BlockSimplifier.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <map>
+
+namespace jawmesh::simplify {
+namespace {
+
+using Cell = std::array<int, 3>;
+
+/// The block cell of every triangle (by centroid) and the index of every cell met, in cell order.
+void cellsOfTriangles(const State& st, double blockMm, double offsetMm, std::vector<Cell>& cellOf,
+                      std::map<Cell, std::size_t>& index) {
+    const auto& P = *st.points;
+    const std::size_t nt = st.tris.size();
+    cellOf.resize(nt);
+    for (std::size_t t = 0; t < nt; ++t) {
+        const Tri& f = st.tris[t];
+        const Vec3 c = (P[std::size_t(f[0])] + P[std::size_t(f[1])] + P[std::size_t(f[2])]) / 3.0;
+        for (int k = 0; k < 3; ++k) cellOf[t][std::size_t(k)] = int(std::floor((c[k] - offsetMm) / blockMm));
+        index.emplace(cellOf[t], 0);
+    }
+    std::size_t n = 0;
+    for (auto& [cell, i] : index) i = n++;  // blocks in cell order: deterministic
+}
+
+/// Adds triangle t (box `box`, in cell c) to the obstacles of every neighbouring block whose cell
+/// its box comes within marginMm of.
+void addObstacle(std::int32_t t, const BBox& box, const Cell& c, const std::map<Cell, std::size_t>& index, double blockMm,
+                 double offsetMm, double marginMm, std::vector<Block>& blocks) {
+    // Per axis, which neighbours (-1, +1) the box comes near; most triangles sit inside their
+    // cell and skip the 26 lookups (the test below then decides exactly, as before).
+    bool reach[3][2];
+    for (int k = 0; k < 3; ++k) {
+        reach[k][0] = box.min[k] <= c[std::size_t(k)] * blockMm + offsetMm + marginMm;
+        reach[k][1] = box.max[k] >= (c[std::size_t(k)] + 1) * blockMm + offsetMm - marginMm;
+    }
+    if (!(reach[0][0] || reach[0][1] || reach[1][0] || reach[1][1] || reach[2][0] || reach[2][1])) return;
+    const auto skip = [&](int k, int d) { return d != 0 && !reach[k][d > 0 ? 1 : 0]; };
+    for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz) {
+                if (!dx && !dy && !dz) continue;
+                if (skip(0, dx) || skip(1, dy) || skip(2, dz)) continue;
+                const Cell nb{c[0] + dx, c[1] + dy, c[2] + dz};
+                const auto it = index.find(nb);
+                if (it == index.end()) continue;
+                bool near = true;
+                for (int k = 0; k < 3 && near; ++k) {
+                    const double lo = nb[std::size_t(k)] * blockMm + offsetMm - marginMm;
+                    const double hi = (nb[std::size_t(k)] + 1) * blockMm + offsetMm + marginMm;
+                    near = box.max[k] >= lo && box.min[k] <= hi;
+                }
+                if (near) blocks[it->second].obstacles.push_back(t);
+            }
+}
+
+/// One pass: every block simplified in parallel (blocks only write their own data), then the
+/// results put back in block order.
+std::size_t runPass(State& st, double blockMm, double offsetMm, const SimplifyOptions& o, Progress& progress,
+                    ProgressStage& stage, double from, double to) {
+    std::vector<char> border;
+    const double margin = 2.0 * std::max({o.boneMaxEdgeMm, o.toothMaxEdgeMm, o.pdlMaxEdgeMm});
+    const std::vector<Block> blocks = makeBlocks(st, blockMm, offsetMm, margin, border);
+    std::vector<BlockResult> results(blocks.size());
+    std::atomic<std::size_t> done{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const auto& r) {
+        for (std::size_t b = r.begin(); b != r.end(); ++b) {
+            progress.checkCancelled();
+            BlockSimplifier s(st, blocks[b], border, o);
+            s.run(progress);
+            results[b] = s.result();
+            const std::size_t d = ++done;
+            if (tbb::this_task_arena::current_thread_index() == 0)
+                stage.update(from + (to - from) * double(d) / double(blocks.size()));
+        }
+    });
+    State next;
+    std::size_t collapses = 0;
+    for (BlockResult& r : results) {
+        next.tris.insert(next.tris.end(), r.tris.begin(), r.tris.end());
+        next.sides.insert(next.sides.end(), r.sides.begin(), r.sides.end());
+        for (auto& p : r.pts) next.pts.push_back(std::move(p));
+        for (std::uint64_t key : r.takenCurves) st.curvePts.erase(key);
+        for (auto& [key, pts] : r.curves) st.curvePts[key] = std::move(pts);
+        collapses += r.collapses;
+    }
+    st.tris = std::move(next.tris);
+    st.sides = std::move(next.sides);
+    st.pts = std::move(next.pts);
+    return collapses;
+}
+
+}  // namespace
+
+std::vector<Block> makeBlocks(const State& st, double blockMm, double offsetMm, double marginMm,
+                              std::vector<char>& border) {
+    const std::size_t nt = st.tris.size();
+    border.assign(st.points->size(), 0);
+    if (blockMm <= 0) {
+        Block all;
+        all.tris.resize(nt);
+        for (std::size_t t = 0; t < nt; ++t) all.tris[t] = std::int32_t(t);
+        return {all};
+    }
+    const auto& P = *st.points;
+    std::vector<Cell> cellOf;
+    std::map<Cell, std::size_t> index;
+    cellsOfTriangles(st, blockMm, offsetMm, cellOf, index);
+    std::vector<Block> blocks(index.size());
+    std::vector<std::int32_t> owner(P.size(), -1);
+    for (std::size_t t = 0; t < nt; ++t) {
+        const std::size_t b = index.at(cellOf[t]);
+        blocks[b].tris.push_back(std::int32_t(t));
+        for (std::int32_t v : st.tris[t]) {
+            if (owner[std::size_t(v)] < 0) owner[std::size_t(v)] = std::int32_t(b);
+            else if (owner[std::size_t(v)] != std::int32_t(b)) border[std::size_t(v)] = 1;
+        }
+    }
+    for (std::size_t t = 0; t < nt; ++t) {
+        BBox box;
+        for (std::int32_t v : st.tris[t]) box.extend(P[std::size_t(v)]);
+        addObstacle(std::int32_t(t), box, cellOf[t], index, blockMm, offsetMm, marginMm, blocks);
+    }
+    return blocks;
+}
+
+std::size_t simplifyInPasses(State& st, const SimplifyOptions& o, Progress& progress, ProgressStage& stage) {
+    std::size_t collapses = 0;
+    if (o.blockMm > 0) {
+        collapses += runPass(st, o.blockMm, 0.0, o, progress, stage, 0.0, 0.6);
+        collapses += runPass(st, o.blockMm, 0.5 * o.blockMm, o, progress, stage, 0.6, 0.9);
+    }
+    collapses += runPass(st, 0.0, 0.0, o, progress, stage, 0.9, 0.97);
+    return collapses;
+}
+
+}  // namespace jawmesh::simplify
