@@ -1,3 +1,4 @@
+// Implements batch/BatchLayout.h; what it computes, its rules and its contract are documented there.
 #include "batch/BatchLayout.h"
 
 #include "io/Error.h"

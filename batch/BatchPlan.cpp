@@ -1,3 +1,4 @@
+// Implements batch/BatchPlan.h; what it computes, its rules and its contract are documented there.
 #include "batch/BatchPlan.h"
 
 #include "batch/BatchLayout.h"

@@ -1,3 +1,4 @@
+// Implements batch/Checksum.h; what it computes, its rules and its contract are documented there.
 #include "batch/Checksum.h"
 
 #include "io/Error.h"

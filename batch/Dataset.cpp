@@ -1,3 +1,4 @@
+// Implements batch/Dataset.h; what it computes, its rules and its contract are documented there.
 #include "batch/Dataset.h"
 
 #include "io/Case.h"

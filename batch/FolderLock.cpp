@@ -1,3 +1,4 @@
+// Implements batch/FolderLock.h; what it computes, its rules and its contract are documented there.
 #include "batch/FolderLock.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements batch/Manifest.h; what it computes, its rules and its contract are documented there.
 #include "batch/Manifest.h"
 
 #include "batch/BatchLayout.h"

@@ -1,3 +1,4 @@
+// Implements batch/MemoryEstimate.h; what it computes, its rules and its contract are documented there.
 #include "batch/MemoryEstimate.h"
 
 #include "io/Error.h"

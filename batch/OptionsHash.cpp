@@ -1,3 +1,4 @@
+// Implements batch/OptionsHash.h; what it computes, its rules and its contract are documented there.
 #include "batch/OptionsHash.h"
 
 #include "batch/Checksum.h"

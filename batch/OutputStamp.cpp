@@ -1,3 +1,4 @@
+// Implements batch/OutputStamp.h; what it computes, its rules and its contract are documented there.
 #include "batch/OutputStamp.h"
 
 #include "batch/Checksum.h"

@@ -1,3 +1,4 @@
+// Implements batch/RunLocal.h; what it computes, its rules and its contract are documented there.
 #include "batch/RunLocal.h"
 
 #include "batch/BatchLayout.h"

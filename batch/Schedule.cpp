@@ -1,3 +1,4 @@
+// Implements batch/Schedule.h; what it computes, its rules and its contract are documented there.
 #include "batch/Schedule.h"
 
 namespace jawmesh {

@@ -1,3 +1,4 @@
+// Implements batch/SlurmScript.h; what it computes, its rules and its contract are documented there.
 #include "batch/SlurmScript.h"
 
 #include <cstdint>

@@ -1,3 +1,4 @@
+// Implements batch/Summary.h; what it computes, its rules and its contract are documented there.
 #include "batch/Summary.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// Implements cli/BashCompletion.h; what it computes, its rules and its contract are documented there.
 #include "cli/BashCompletion.h"
 
 #include <sstream>

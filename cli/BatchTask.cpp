@@ -1,3 +1,4 @@
+// Implements cli/BatchTask.h; what it computes, its rules and its contract are documented there.
 #include "cli/BatchTask.h"
 
 #include "batch/BatchLayout.h"

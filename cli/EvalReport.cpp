@@ -1,3 +1,4 @@
+// Implements cli/EvalReport.h; what it computes, its rules and its contract are documented there.
 #include "cli/EvalReport.h"
 
 #include "filters/CrossSection.h"

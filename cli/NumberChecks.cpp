@@ -1,3 +1,4 @@
+// Implements cli/NumberChecks.h; what it computes, its rules and its contract are documented there.
 #include "cli/NumberChecks.h"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// Implements cli/Pipeline.h; what it computes, its rules and its contract are documented there.
 #include "cli/Pipeline.h"
 
 #include "batch/MemoryEstimate.h"

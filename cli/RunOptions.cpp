@@ -1,3 +1,4 @@
+// Implements cli/RunOptions.h; what it computes, its rules and its contract are documented there.
 #include "cli/RunOptions.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements cli/TerminalProgress.h; what it computes, its rules and its contract are documented there.
 #include "cli/TerminalProgress.h"
 
 #include <atomic>

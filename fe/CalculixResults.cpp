@@ -1,3 +1,4 @@
+// Implements fe/CalculixResults.h; what it computes, its rules and its contract are documented there.
 #include "fe/CalculixResults.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements fe/CalculixWriter.h; what it computes, its rules and its contract are documented there.
 #include "fe/CalculixWriter.h"
 
 #include "fe/ConsistentNodalForces.h"

@@ -1,3 +1,4 @@
+// Implements fe/CloseBite.h; what it computes, its rules and its contract are documented there.
 #include "fe/CloseBite.h"
 
 #include "filters/RayTriangle.h"

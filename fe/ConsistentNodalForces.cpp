@@ -1,3 +1,4 @@
+// Implements fe/ConsistentNodalForces.h; what it computes, its rules and its contract are documented there.
 #include "fe/ConsistentNodalForces.h"
 
 #include "fe/ExteriorFaces.h"

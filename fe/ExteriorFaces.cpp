@@ -1,3 +1,4 @@
+// Implements fe/ExteriorFaces.h; what it computes, its rules and its contract are documented there.
 #include "fe/ExteriorFaces.h"
 
 #include "tet/TetFaceAdjacency.h"

@@ -1,3 +1,4 @@
+// Implements fe/FeDecks.h; what it computes, its rules and its contract are documented there.
 #include "fe/FeDecks.h"
 
 #include "fe/CalculixWriter.h"

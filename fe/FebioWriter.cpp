@@ -1,3 +1,4 @@
+// Implements fe/FebioWriter.h; what it computes, its rules and its contract are documented there.
 #include "fe/FebioWriter.h"
 
 #include "fe/ExteriorFaces.h"

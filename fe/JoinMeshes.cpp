@@ -1,3 +1,4 @@
+// Implements fe/JoinMeshes.h; what it computes, its rules and its contract are documented there.
 #include "fe/JoinMeshes.h"
 
 #include "io/Error.h"

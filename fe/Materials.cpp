@@ -1,3 +1,4 @@
+// Implements fe/Materials.h; what it computes, its rules and its contract are documented there.
 #include "fe/Materials.h"
 
 #include "io/Error.h"

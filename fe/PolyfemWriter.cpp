@@ -1,3 +1,4 @@
+// Implements fe/PolyfemWriter.h; what it computes, its rules and its contract are documented there.
 #include "fe/PolyfemWriter.h"
 
 #include "io/AtomicFile.h"

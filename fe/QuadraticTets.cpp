@@ -1,3 +1,4 @@
+// Implements fe/QuadraticTets.h; what it computes, its rules and its contract are documented there.
 #include "fe/QuadraticTets.h"
 
 namespace jawmesh {

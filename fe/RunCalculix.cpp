@@ -1,3 +1,4 @@
+// Implements fe/RunCalculix.h; what it computes, its rules and its contract are documented there.
 #include "fe/RunCalculix.h"
 
 #include "fe/CalculixResults.h"

@@ -1,3 +1,4 @@
+// Implements fe/Scenario.h; what it computes, its rules and its contract are documented there.
 #include "fe/Scenario.h"
 
 #include "fe/CloseBite.h"

@@ -1,3 +1,4 @@
+// Implements fe/ToothAxesFromShape.h; what it computes, its rules and its contract are documented there.
 #include "fe/ToothAxesFromShape.h"
 
 #include "filters/RayTriangle.h"

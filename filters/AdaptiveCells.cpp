@@ -1,3 +1,4 @@
+// Implements filters/AdaptiveCells.h; what it computes, its rules and its contract are documented there.
 #include "filters/AdaptiveCells.h"
 
 #include "filters/CoarseBlocks.h"

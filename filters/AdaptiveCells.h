@@ -54,9 +54,9 @@ struct AdaptiveOptions {
     double minAngleDeg = 5.0;
     double minWedgeDeg = 20.0;
     /// No other sheet and no third label within this many voxels of a block (thin plates, junctions).
-    /// 1 keeps plates of up to about two voxels and the voxels at junction curves fine. 2 also kept
-    /// both sheets of a 0.2 mm PDL at 0.05 mm voxels fine (shared mandible: 5.9 M triangles for the
-    /// simplification against 3.3 M); 0 left a tet the improver could not lift over 10 degrees.
+    /// 1 keeps plates of up to about two voxels and the voxels at junction curves fine; 2 also keeps
+    /// both sheets of a four-voxel PDL fine (many more triangles for the simplification); 0 lets
+    /// blocks reach a junction, whose tets the improver may not lift over the target.
     int ringVoxels = 1;
 };
 

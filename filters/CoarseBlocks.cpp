@@ -1,3 +1,4 @@
+// Implements filters/CoarseBlocks.h; what it computes, its rules and its contract are documented there.
 #include "filters/CoarseBlocks.h"
 
 #include <vector>

@@ -1,3 +1,4 @@
+// Implements filters/CrossSection.h; what it computes, its rules and its contract are documented there.
 #include "filters/CrossSection.h"
 
 #include "io/Error.h"

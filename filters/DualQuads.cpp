@@ -1,3 +1,4 @@
+// Implements filters/DualQuads.h; what it computes, its rules and its contract are documented there.
 #include "filters/DualQuads.h"
 
 #include <tbb/parallel_for.h>

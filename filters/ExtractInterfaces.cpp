@@ -1,3 +1,4 @@
+// Implements filters/ExtractInterfaces.h; what it computes, its rules and its contract are documented there.
 #include "filters/ExtractInterfaces.h"
 
 #include "filters/AdaptiveCells.h"

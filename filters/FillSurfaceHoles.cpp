@@ -1,3 +1,4 @@
+// Implements filters/FillSurfaceHoles.h; what it computes, its rules and its contract are documented there.
 #include "filters/FillSurfaceHoles.h"
 
 #include "filters/HoleFlap.h"

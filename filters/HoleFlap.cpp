@@ -1,3 +1,4 @@
+// Implements filters/HoleFlap.h; what it computes, its rules and its contract are documented there.
 #include "filters/HoleFlap.h"
 
 #include <algorithm>

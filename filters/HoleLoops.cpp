@@ -1,3 +1,4 @@
+// Implements filters/HoleLoops.h; what it computes, its rules and its contract are documented there.
 #include "filters/HoleLoops.h"
 
 #include "filters/OpenRegionEdges.h"

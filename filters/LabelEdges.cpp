@@ -1,3 +1,4 @@
+// Implements filters/LabelEdges.h; what it computes, its rules and its contract are documented there.
 #include "filters/LabelEdges.h"
 
 #include <tbb/parallel_for.h>

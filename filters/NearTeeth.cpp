@@ -1,3 +1,4 @@
+// Implements filters/NearTeeth.h; what it computes, its rules and its contract are documented there.
 #include "filters/NearTeeth.h"
 
 #include "io/Labels.h"

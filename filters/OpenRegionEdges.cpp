@@ -1,3 +1,4 @@
+// Implements filters/OpenRegionEdges.h; what it computes, its rules and its contract are documented there.
 #include "filters/OpenRegionEdges.h"
 
 #include <algorithm>

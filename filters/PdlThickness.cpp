@@ -1,3 +1,4 @@
+// Implements filters/PdlThickness.h; what it computes, its rules and its contract are documented there.
 #include "filters/PdlThickness.h"
 
 #include "io/Error.h"

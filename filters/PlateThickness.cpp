@@ -1,3 +1,4 @@
+// Implements filters/PlateThickness.h; what it computes, its rules and its contract are documented there.
 #include "filters/PlateThickness.h"
 
 #include "filters/RayTriangle.h"

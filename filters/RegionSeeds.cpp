@@ -1,3 +1,4 @@
+// Implements filters/RegionSeeds.h; what it computes, its rules and its contract are documented there.
 #include "filters/RegionSeeds.h"
 
 #include <openvdb/tools/LevelSetUtil.h>

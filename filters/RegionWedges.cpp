@@ -1,3 +1,4 @@
+// Implements filters/RegionWedges.h; what it computes, its rules and its contract are documented there.
 #include "filters/RegionWedges.h"
 
 #include "io/Angles.h"

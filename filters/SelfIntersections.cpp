@@ -1,3 +1,4 @@
+// Implements filters/SelfIntersections.h; what it computes, its rules and its contract are documented there.
 #include "filters/SelfIntersections.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements filters/ShellSeeds.h; what it computes, its rules and its contract are documented there.
 #include "filters/ShellSeeds.h"
 
 #include "filters/RayTriangle.h"

@@ -1,3 +1,4 @@
+// Implements filters/SmallComponents.h; what it computes, its rules and its contract are documented there.
 #include "filters/SmallComponents.h"
 
 #include "filters/LabelEdges.h"

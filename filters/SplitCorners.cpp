@@ -1,3 +1,4 @@
+// Implements filters/SplitCorners.h; what it computes, its rules and its contract are documented there.
 #include "filters/SplitCorners.h"
 
 #include <algorithm>

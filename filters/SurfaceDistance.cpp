@@ -1,3 +1,4 @@
+// Implements filters/SurfaceDistance.h; what it computes, its rules and its contract are documented there.
 #include "filters/SurfaceDistance.h"
 
 #include "filters/TriangleGeometry.h"

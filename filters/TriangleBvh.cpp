@@ -1,3 +1,4 @@
+// Implements filters/TriangleBvh.h; what it computes, its rules and its contract are documented there.
 #include "filters/TriangleBvh.h"
 
 #include "filters/TriangleGeometry.h"

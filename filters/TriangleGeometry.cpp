@@ -1,3 +1,4 @@
+// Implements filters/TriangleGeometry.h; what it computes, its rules and its contract are documented there.
 #include "filters/TriangleGeometry.h"
 
 #include "io/Angles.h"

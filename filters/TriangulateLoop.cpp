@@ -1,3 +1,4 @@
+// Implements filters/TriangulateLoop.h; what it computes, its rules and its contract are documented there.
 #include "filters/TriangulateLoop.h"
 
 #include "filters/TriangleGeometry.h"

@@ -1,3 +1,4 @@
+// Implements filters/WeightedDistribution.h; what it computes, its rules and its contract are documented there.
 #include "filters/WeightedDistribution.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// Implements filters/WellComposedLabels.h; what it computes, its rules and its contract are documented there.
 #include "filters/WellComposedLabels.h"
 
 #include "filters/LabelEdges.h"

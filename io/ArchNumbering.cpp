@@ -1,3 +1,4 @@
+// Implements io/ArchNumbering.h; what it computes, its rules and its contract are documented there.
 #include "io/ArchNumbering.h"
 
 #include "io/Angles.h"

@@ -1,3 +1,4 @@
+// Implements io/AtomicFile.h; what it computes, its rules and its contract are documented there.
 #include "io/AtomicFile.h"
 
 #include "io/Error.h"

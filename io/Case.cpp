@@ -1,3 +1,4 @@
+// Implements io/Case.h; what it computes, its rules and its contract are documented there.
 #include "io/Case.h"
 
 #include "io/Error.h"

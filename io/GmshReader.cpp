@@ -1,3 +1,4 @@
+// Implements io/GmshReader.h; what it computes, its rules and its contract are documented there.
 #include "io/GmshReader.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements io/GmshWriter.h; what it computes, its rules and its contract are documented there.
 #include "io/GmshWriter.h"
 
 #include "io/AtomicFile.h"

@@ -1,3 +1,4 @@
+// Implements io/InterfaceComplex.h; what it computes, its rules and its contract are documented there.
 #include "io/InterfaceComplex.h"
 
 #include <algorithm>

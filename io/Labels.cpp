@@ -1,3 +1,4 @@
+// Implements io/Labels.h; what it computes, its rules and its contract are documented there.
 #include "io/Labels.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements io/LabelsJson.h; what it computes, its rules and its contract are documented there.
 #include "io/LabelsJson.h"
 
 #include "io/AtomicFile.h"

@@ -1,3 +1,4 @@
+// Implements io/MeditWriter.h; what it computes, its rules and its contract are documented there.
 #include "io/MeditWriter.h"
 
 #include "io/AtomicFile.h"

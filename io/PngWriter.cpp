@@ -1,3 +1,4 @@
+// Implements io/PngWriter.h; what it computes, its rules and its contract are documented there.
 #include "io/PngWriter.h"
 
 #include "io/AtomicFile.h"

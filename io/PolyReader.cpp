@@ -1,3 +1,4 @@
+// Implements io/PolyReader.h; what it computes, its rules and its contract are documented there.
 #include "io/PolyReader.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements io/PolyWriter.h; what it computes, its rules and its contract are documented there.
 #include "io/PolyWriter.h"
 
 #include "io/AtomicFile.h"

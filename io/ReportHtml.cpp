@@ -1,3 +1,4 @@
+// Implements io/ReportHtml.h; what it computes, its rules and its contract are documented there.
 #include "io/ReportHtml.h"
 
 #include "io/PngWriter.h"

@@ -1,3 +1,4 @@
+// Implements io/ResourceUsage.h; what it computes, its rules and its contract are documented there.
 #include "io/ResourceUsage.h"
 
 #include <sys/resource.h>

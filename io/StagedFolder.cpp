@@ -1,3 +1,4 @@
+// Implements io/StagedFolder.h; what it computes, its rules and its contract are documented there.
 #include "io/StagedFolder.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements io/SurfaceMesh.h; what it computes, its rules and its contract are documented there.
 #include "io/SurfaceMesh.h"
 
 #include <algorithm>

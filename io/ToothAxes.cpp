@@ -1,3 +1,4 @@
+// Implements io/ToothAxes.h; what it computes, its rules and its contract are documented there.
 #include "io/ToothAxes.h"
 
 #include "io/AtomicFile.h"

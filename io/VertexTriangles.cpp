@@ -1,3 +1,4 @@
+// Implements io/VertexTriangles.h; what it computes, its rules and its contract are documented there.
 #include "io/VertexTriangles.h"
 
 namespace jawmesh {

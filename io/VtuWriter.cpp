@@ -1,3 +1,4 @@
+// Implements io/VtuWriter.h; what it computes, its rules and its contract are documented there.
 #include "io/VtuWriter.h"
 
 #include "io/AtomicFile.h"

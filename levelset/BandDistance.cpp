@@ -1,3 +1,4 @@
+// Implements levelset/BandDistance.h; what it computes, its rules and its contract are documented there.
 #include "levelset/BandDistance.h"
 
 #include <tbb/blocked_range.h>

@@ -1,3 +1,4 @@
+// Implements levelset/CarveGaps.h; what it computes, its rules and its contract are documented there.
 #include "levelset/CarveGaps.h"
 
 #include "io/Error.h"

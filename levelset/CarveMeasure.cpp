@@ -1,3 +1,4 @@
+// Implements levelset/CarveMeasure.h; what it computes, its rules and its contract are documented there.
 #include "levelset/CarveMeasure.h"
 
 #include "io/Error.h"

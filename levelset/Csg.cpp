@@ -1,3 +1,4 @@
+// Implements levelset/Csg.h; what it computes, its rules and its contract are documented there.
 #include "levelset/Csg.h"
 
 #include "io/Error.h"

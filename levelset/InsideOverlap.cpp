@@ -1,3 +1,4 @@
+// Implements levelset/InsideOverlap.h; what it computes, its rules and its contract are documented there.
 #include "levelset/InsideOverlap.h"
 
 #include <openvdb/tools/LevelSetUtil.h>

@@ -1,3 +1,4 @@
+// Implements levelset/JawLevelSets.h; what it computes, its rules and its contract are documented there.
 #include "levelset/JawLevelSets.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements levelset/LabelFieldIO.h; what it computes, its rules and its contract are documented there.
 #include "levelset/LabelFieldIO.h"
 
 #include "io/AtomicFile.h"

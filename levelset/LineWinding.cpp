@@ -1,3 +1,4 @@
+// Implements levelset/LineWinding.h; what it computes, its rules and its contract are documented there.
 #include "levelset/LineWinding.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements levelset/MeshToLevelSet.h; what it computes, its rules and its contract are documented there.
 #include "levelset/MeshToLevelSet.h"
 
 #include "io/Error.h"

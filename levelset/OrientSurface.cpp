@@ -1,3 +1,4 @@
+// Implements levelset/OrientSurface.h; what it computes, its rules and its contract are documented there.
 #include "levelset/OrientSurface.h"
 
 #include "levelset/LineWinding.h"

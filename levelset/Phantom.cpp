@@ -1,3 +1,4 @@
+// Implements levelset/Phantom.h; what it computes, its rules and its contract are documented there.
 #include "levelset/Phantom.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements levelset/PhantomAnatomy.h; what it computes, its rules and its contract are documented there.
 #include "levelset/PhantomAnatomy.h"
 
 #include "io/Angles.h"

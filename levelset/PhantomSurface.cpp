@@ -1,3 +1,4 @@
+// Implements levelset/PhantomSurface.h; what it computes, its rules and its contract are documented there.
 #include "levelset/PhantomSurface.h"
 
 #include "io/Error.h"

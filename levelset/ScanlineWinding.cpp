@@ -1,3 +1,4 @@
+// Implements levelset/ScanlineWinding.h; what it computes, its rules and its contract are documented there.
 #include "levelset/ScanlineWinding.h"
 
 #include "io/Error.h"

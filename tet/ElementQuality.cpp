@@ -1,3 +1,4 @@
+// Implements tet/ElementQuality.h; what it computes, its rules and its contract are documented there.
 #include "tet/ElementQuality.h"
 
 #include "io/Angles.h"

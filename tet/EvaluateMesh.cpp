@@ -1,3 +1,4 @@
+// Implements tet/EvaluateMesh.h; what it computes, its rules and its contract are documented there.
 #include "tet/EvaluateMesh.h"
 
 #include "filters/PdlThickness.h"

@@ -1,3 +1,4 @@
+// Implements tet/HoleCut.h; what it computes, its rules and its contract are documented there.
 #include "tet/HoleCut.h"
 
 #include "filters/TriangleGeometry.h"

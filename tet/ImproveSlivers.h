@@ -22,22 +22,22 @@ struct SliverOptions {
     bool interfaceInsertions = true;
     /// When the operations above leave bad tets, try each candidate of each operation even when
     /// it does not help at once, improve around it, and keep it when fewer bad tets are left there.
-    /// Depth of that lookahead (0: none). On the shared mandible 41 tets under 10 degrees are left
-    /// without it, 12 with depth 1 (+7 s), 6 with depth 2 (+270 s).
+    /// Depth of that lookahead (0: none); each level multiplies its cost by the candidates tried
+    /// (docs/BENCHMARKS.md has what each depth leaves on the shared mandible).
     int lookaheadDepth = 1;
     /// Deeper lookaheads (when lookaheadDepth > 0), up to this depth, after the pushes, when no
     /// more than deepLookaheadTets bad tets are left: their cost grows with the tets they start
-    /// from, so they are kept for the last few (the adaptive mandible surface: 3 left, 0 at depth 2).
+    /// from, so they are kept for the last few.
     int deepLookaheadDepth = 2;
     std::size_t deepLookaheadTets = 8;
     /// Trials each deeper level may make in all, nested ones included (a count, not a clock, so the
-    /// result does not depend on speed; 200: 2.5 s on the thin-lip test, enough for the mandible).
+    /// result does not depend on speed).
     std::size_t deepLookaheadTrials = 200;
     /// How far the last resort may push an interface node (one inside the mesh, not on its outer
     /// boundary) away from the face opposite it in a tet still under the target, mm (0: never).
-    /// The surface moves by at most this much; each node is pushed once at most. On the shared
-    /// mandible the two tets left under 10 degrees sat on lips 0.002-0.009 mm thick in the fine
-    /// extraction itself.
+    /// The surface moves by at most this much; each node is pushed once at most. For lips a few
+    /// thousandths of a millimetre thick that the extraction itself left, which no re-triangulation
+    /// fills with good tets.
     double interfacePushMm = 0.005;
 };
 

@@ -1,3 +1,4 @@
+// Implements tet/RefineComplex.h; what it computes, its rules and its contract are documented there.
 #include "tet/RefineComplex.h"
 
 #include "io/SurfaceMesh.h"

@@ -1,3 +1,4 @@
+// Implements tet/RegionSurfaces.h; what it computes, its rules and its contract are documented there.
 #include "tet/RegionSurfaces.h"
 
 #include "io/Error.h"

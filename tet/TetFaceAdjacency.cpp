@@ -1,3 +1,4 @@
+// Implements tet/TetFaceAdjacency.h; what it computes, its rules and its contract are documented there.
 #include "tet/TetFaceAdjacency.h"
 
 #include <tbb/parallel_for.h>

@@ -51,9 +51,8 @@ struct TetOptions {
     /// around them are split at their midpoints (the surface does not move) and the kept run is
     /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h). Off by
     /// default: the surface's error bound (SimplifyInterfaces.h) is checked at the vertices,
-    /// centroids and edge midpoints of its triangles only, and the centroids of the split halves
-    /// were found 0.0223 mm from the raw surface against a 0.02 mm bound on the shared mandible
-    /// (2 rounds take its tets under 10 degrees from 41 to 27).
+    /// centroids and edge midpoints of its triangles only, so the centroids of the split halves
+    /// can lie farther from the raw surface than the bound (docs/DESIGN.md).
     int refineRounds = 0;
 };
 

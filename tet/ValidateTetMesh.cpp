@@ -1,3 +1,4 @@
+// Implements tet/ValidateTetMesh.h; what it computes, its rules and its contract are documented there.
 #include "tet/ValidateTetMesh.h"
 
 #include "io/Error.h"

@@ -1,3 +1,4 @@
+// Implements the test helpers of support_CliRun.h (documented there).
 #include "support_CliRun.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// Implements the test helpers of support_RunChecks.h (documented there).
 #include "support_RunChecks.h"
 
 #include "filters/TriangleGeometry.h"

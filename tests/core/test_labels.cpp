@@ -1,3 +1,5 @@
+// Region labels: the numbering scheme (bone, tooth 100 + UNN, PDL 200 + UNN), names and kinds, and the
+// refusal of numbers that are no tooth of a jaw.
 #include "io/Error.h"
 #include "io/Labels.h"
 

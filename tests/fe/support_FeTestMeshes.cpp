@@ -1,3 +1,4 @@
+// Implements the test helpers of fe/FeTestMeshes.h (documented there).
 #include "fe/FeTestMeshes.h"
 
 #include "tet/GridTetMesh.h"

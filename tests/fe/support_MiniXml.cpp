@@ -1,3 +1,4 @@
+// Implements the test helpers of fe/support_MiniXml.h (documented there).
 #include "fe/support_MiniXml.h"
 
 #include <cctype>

@@ -1,3 +1,4 @@
+// Implements the test helpers of support_SyntheticLabels.h (documented there).
 #include "support_SyntheticLabels.h"
 
 #include "io/PolyWriter.h"

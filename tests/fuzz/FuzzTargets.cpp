@@ -1,3 +1,4 @@
+// Implements the test helpers of FuzzTargets.h (documented there).
 #include "FuzzTargets.h"
 
 #include "cli/RunOptions.h"

@@ -1,3 +1,4 @@
+// Implements the test helpers of tet/TetTestComplexes.h (documented there).
 #include "tet/TetTestComplexes.h"
 
 #include "support/Icosphere.h"
