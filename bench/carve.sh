@@ -10,11 +10,10 @@ here="$(cd "$(dirname "$0")" && pwd)"
 jawmesh="${1:-$here/../build/cli/jawmesh}"
 voxel="${2:-0.05}"
 runs="${3:-3}"
-case_dir="${JAWMESH_DATA:-$here/../../shared/data}/openmandible"
 threads="${THREADS:-0}"
 source "$here/common.sh"
 require_jawmesh "$jawmesh"
-require_folder "$case_dir/input" "shared data"
+require_mandible_case case_dir
 require_runs "$runs"
 require_python3
 make_work_dir out

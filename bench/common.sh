@@ -7,6 +7,13 @@ require_jawmesh() {  # <path>
 require_folder() {  # <path> <what it should hold>
   [ -d "$1" ] || { echo "no $2 at $1" >&2; exit 1; }
 }
+# The shared mandible case (JAWMESH_DATA, else ../shared/data beside the checkout), required; sets
+# the variable named $1 (like make_work_dir).
+require_mandible_case() {  # <variable name>
+  local dir="${JAWMESH_DATA:-$here/../../shared/data}/openmandible"
+  require_folder "$dir/input" "shared data"
+  printf -v "$1" '%s' "$dir"
+}
 require_runs() {  # <count>
   [ "$1" -ge 1 ] || { echo "runs must be >= 1" >&2; exit 1; }
 }

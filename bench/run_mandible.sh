@@ -10,11 +10,10 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 jawmesh="${1:-$here/../build/cli/jawmesh}"
 runs="${2:-3}"
-case_dir="${JAWMESH_DATA:-$here/../../shared/data}/openmandible"
 threads="${THREADS:-0}"
 source "$here/common.sh"
 require_jawmesh "$jawmesh"
-require_folder "$case_dir/input" "shared data"
+require_mandible_case case_dir
 require_runs "$runs"
 require_time
 make_work_dir work

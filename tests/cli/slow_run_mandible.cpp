@@ -22,33 +22,10 @@ TEST(SlowRunMandible, MeshMeetsTheConformityQualityAndAccuracyTargets) {
     if (!run) GTEST_SKIP() << "set JAWMESH_MANDIBLE_RUN=<out>/mandible (a finished run of the shared mandible)";
     const std::string input = test::sharedData("openmandible/input/mandible");
     JAWMESH_REQUIRE_SHARED(input);
-    std::vector<int> teeth;
-    for (const auto& e : fs::directory_iterator(fs::path(input) / "teeth")) {
-        const std::string name = e.path().stem().string();
-        if (name.rfind("tooth_", 0) == 0) teeth.push_back(std::stoi(name.substr(6)));
-    }
-    std::sort(teeth.begin(), teeth.end());
+    const std::vector<int> teeth = test::teethIn(input + "/teeth");
     ASSERT_EQ(teeth.size(), 14u);
-
     const test::RunFigures f = test::measureRun(run, input, "mandible", teeth);
-    std::printf("tets %zu, min dihedral %.2f deg (%zu below 10), bone Hausdorff %.3f mm\n", f.quality.tets,
-                f.quality.minDihedralDeg, f.quality.belowDihedralThreshold, f.boneHausdorffMm);
-    for (int u : teeth)
-        std::printf("tooth %d: PDL thickness mean %.4f mm, Hausdorff %.3f mm\n", u, f.pdlThicknessMeanMm.at(u),
-                    f.toothHausdorffMm.at(u));
-
-    EXPECT_TRUE(f.validation.valid()) << (f.validation.messages.empty() ? "" : f.validation.messages.front());
-    EXPECT_EQ(f.validation.nonManifoldFaces + f.validation.coincidentFaces + f.validation.invertedTets +
-                  f.validation.duplicateNodes + f.validation.degenerateTets,
-              0u);
-    EXPECT_TRUE(f.validation.missingTeeth.empty() && f.validation.missingPdls.empty());
-    EXPECT_GE(f.quality.minDihedralDeg, 10.0);
-    EXPECT_LE(f.quality.tets, 800000u);
-    for (int u : teeth) {
-        EXPECT_NEAR(f.pdlThicknessMeanMm.at(u), 0.20, 0.01) << "tooth " << u;
-        EXPECT_LE(f.toothHausdorffMm.at(u), 0.15) << "tooth " << u;
-    }
-    EXPECT_LE(f.boneHausdorffMm, 0.25);
+    test::expectRunMeetsTargets(f, teeth);
 
     std::ifstream in(fs::path(run) / "run.json");
     const auto record = nlohmann::json::parse(in);

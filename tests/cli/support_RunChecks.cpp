@@ -8,8 +8,12 @@
 #include "tet/RegionSurfaces.h"
 #include "tet/TetFaceAdjacency.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <limits>
 
 namespace jawmesh::test {
@@ -139,6 +143,36 @@ RunFigures measureRun(const std::string& jawDir, const std::string& inputJawDir,
     const auto it = surfaces.find(bone);
     if (it != surfaces.end()) r.boneHausdorffMm = twoSided(it->second, readSurface(inputJawDir + "/bone/" + jaw + ".stl"), 1.0);
     return r;
+}
+
+std::vector<int> teethIn(const std::string& teethDir) {
+    std::vector<int> unn;
+    for (const auto& e : std::filesystem::directory_iterator(teethDir)) {
+        const std::string name = e.path().stem().string();  // tooth_<UNN>
+        if (name.rfind("tooth_", 0) == 0) unn.push_back(std::stoi(name.substr(6)));
+    }
+    std::sort(unn.begin(), unn.end());
+    return unn;
+}
+
+void expectRunMeetsTargets(const RunFigures& f, const std::vector<int>& teeth) {
+    std::printf("tets %zu, min dihedral %.2f deg (%zu below 10), bone Hausdorff %.3f mm\n", f.quality.tets, f.quality.minDihedralDeg,
+                f.quality.belowDihedralThreshold, f.boneHausdorffMm);
+    for (int u : teeth)
+        std::printf("tooth %d: PDL thickness mean %.4f mm, Hausdorff %.3f mm\n", u, f.pdlThicknessMeanMm.at(u), f.toothHausdorffMm.at(u));
+    EXPECT_TRUE(f.validation.valid()) << (f.validation.messages.empty() ? "" : f.validation.messages.front());
+    EXPECT_EQ(f.validation.nonManifoldFaces + f.validation.coincidentFaces + f.validation.invertedTets +
+                  f.validation.duplicateNodes + f.validation.degenerateTets,
+              0u);
+    EXPECT_TRUE(f.validation.missingTeeth.empty() && f.validation.missingPdls.empty());
+    EXPECT_GE(f.quality.minDihedralDeg, 10.0);
+    EXPECT_EQ(f.quality.belowDihedralThreshold, 0u);
+    EXPECT_LE(f.quality.tets, 800000u);
+    for (int u : teeth) {
+        EXPECT_NEAR(f.pdlThicknessMeanMm.at(u), 0.20, 0.01) << "tooth " << u;
+        EXPECT_LE(f.toothHausdorffMm.at(u), 0.15) << "tooth " << u;
+    }
+    EXPECT_LE(f.boneHausdorffMm, 0.25);
 }
 
 }  // namespace jawmesh::test

@@ -45,4 +45,13 @@ struct RunFigures {
 RunFigures measureRun(const std::string& jawDir, const std::string& inputJawDir, const std::string& jaw,
                       const std::vector<int>& teethUnn);
 
+/// The UNNs of the tooth_<UNN>.* files in a case's teeth folder, sorted.
+std::vector<int> teethIn(const std::string& teethDir);
+
+/// Prints the figures and asserts (gtest EXPECTs) what issue #5 asks of every run: valid and
+/// conformal (no defect of any kind, every tooth and PDL present), minimum dihedral >= 10 degrees
+/// with no tet under it, at most 800 k tets, PDL mean 0.200 +- 0.01 mm and tooth Hausdorff
+/// <= 0.15 mm per tooth, bone Hausdorff <= 0.25 mm.
+void expectRunMeetsTargets(const RunFigures& f, const std::vector<int>& teeth);
+
 }  // namespace jawmesh::test

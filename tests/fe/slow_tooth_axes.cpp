@@ -13,6 +13,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
+#include <string>
 
 namespace jawmesh {
 namespace {
@@ -47,12 +49,17 @@ void expectAxesAgree(const JawSurfaces& jaw, const std::map<int, ToothAxes>& com
               << " deg; labial worst " << worstLabial << " deg\n";
 }
 
+/// The one jaw of a shared case (throws when it has several or none).
+JawCase onlyJawOf(const std::string& caseDir) {
+    const CaseInfo info = discoverCase(caseDir);
+    if (info.jaws.size() != 1) throw std::runtime_error(caseDir + ": expected one jaw, found " + std::to_string(info.jaws.size()));
+    return info.jaws[0];
+}
+
 TEST(ToothAxesFromShape, AgreesWithTheProvidedAxesOfRealMaxillaryTeeth) {
     const std::string caseDir = test::sharedData("p26-maxilla-teeth");
     JAWMESH_REQUIRE_SHARED(caseDir);
-    const CaseInfo info = discoverCase(caseDir);
-    ASSERT_EQ(info.jaws.size(), 1u);
-    const JawSurfaces jaw = loadJaw(info.jaws[0]);
+    const JawSurfaces jaw = loadJaw(onlyJawOf(caseDir));
     ASSERT_EQ(jaw.axes.size(), 15u);
     // With the bone deciding the occlusal side, and from the tooth shapes alone.
     std::vector<std::string> notes;
@@ -69,9 +76,7 @@ TEST(ToothAxesFromShape, AgreesWithTheProvidedAxesOfRealMaxillaryTeeth) {
 TEST(ToothAxesFromShape, PlausibleOnTheRealMandibleWithoutProvidedAxes) {
     const std::string caseDir = test::sharedData("openmandible");
     JAWMESH_REQUIRE_SHARED(caseDir);
-    const CaseInfo info = discoverCase(caseDir);
-    ASSERT_EQ(info.jaws.size(), 1u);
-    const JawSurfaces jaw = loadJaw(info.jaws[0]);
+    const JawSurfaces jaw = loadJaw(onlyJawOf(caseDir));
     ASSERT_TRUE(jaw.axes.empty());
     std::vector<std::string> notes;
     const auto axes = toothAxesFromShape(jaw.teeth, jaw.jaw, jaw.bone, {}, &notes);

@@ -46,16 +46,24 @@ TEST(RealCases, MandibleBoneStlIsWeldedAndClosed) {
     EXPECT_NEAR(signedVolume(bone), 46914.8, 5.0);
 }
 
+/// Whether the case has exactly one jaw, of that kind, with `count` tooth files from UNN `first`
+/// to UNN `last`.
+::testing::AssertionResult hasOneJawWithTeeth(const CaseInfo& info, Jaw jaw, std::size_t count, int first, int last) {
+    if (info.jaws.size() != 1) return ::testing::AssertionFailure() << info.jaws.size() << " jaws";
+    const JawCase& jc = info.jaws[0];
+    if (jc.jaw != jaw) return ::testing::AssertionFailure() << "the jaw is " << jawName(jc.jaw);
+    if (jc.toothPaths.size() != count) return ::testing::AssertionFailure() << jc.toothPaths.size() << " teeth";
+    if (jc.toothPaths.begin()->first != first || jc.toothPaths.rbegin()->first != last)
+        return ::testing::AssertionFailure() << "teeth " << jc.toothPaths.begin()->first << " to " << jc.toothPaths.rbegin()->first;
+    return ::testing::AssertionSuccess();
+}
+
 TEST(RealCases, OpenMandibleCaseHas14TeethAndItsBone) {
     const std::string root = sharedData("openmandible");
     JAWMESH_REQUIRE_SHARED(root);
     const CaseInfo info = discoverCase(root);
-    ASSERT_EQ(info.jaws.size(), 1u);
+    ASSERT_TRUE(hasOneJawWithTeeth(info, Jaw::Mandible, 14, 18, 31));
     const JawCase& jc = info.jaws[0];
-    EXPECT_EQ(jc.jaw, Jaw::Mandible);
-    ASSERT_EQ(jc.toothPaths.size(), 14u);
-    EXPECT_EQ(jc.toothPaths.begin()->first, 18);
-    EXPECT_EQ(jc.toothPaths.rbegin()->first, 31);
     EXPECT_TRUE(jc.axesPath.empty());
     const JawSurfaces s = loadJaw(jc);
     EXPECT_EQ(s.bone.triangles.size(), 1686074u);
@@ -73,12 +81,8 @@ TEST(RealCases, P26MaxillaHas15TeethWithAxes) {
     const std::string root = sharedData("p26-maxilla-teeth");
     JAWMESH_REQUIRE_SHARED(root);
     const CaseInfo info = discoverCase(root);
-    ASSERT_EQ(info.jaws.size(), 1u);
+    ASSERT_TRUE(hasOneJawWithTeeth(info, Jaw::Maxilla, 15, 1, 15));
     const JawCase& jc = info.jaws[0];
-    EXPECT_EQ(jc.jaw, Jaw::Maxilla);
-    ASSERT_EQ(jc.toothPaths.size(), 15u);
-    EXPECT_EQ(jc.toothPaths.begin()->first, 1);
-    EXPECT_EQ(jc.toothPaths.rbegin()->first, 15);
     ASSERT_FALSE(jc.axesPath.empty());
     const JawSurfaces s = loadJaw(jc);
     EXPECT_EQ(s.bone.triangles.size(), 567204u);
