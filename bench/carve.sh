@@ -5,21 +5,16 @@
 # the median seconds and peak memory of every stage (load, level sets, each carving stage).
 # Usage: bench/carve.sh [path/to/jawmesh] [voxel_mm] [runs]
 # Environment: JAWMESH_DATA (default: ../shared/data beside the checkout), THREADS (default 0 = all).
-set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
+source "$(dirname "$0")/common.sh"
 jawmesh="${1:-$here/../build/cli/jawmesh}"
 voxel="${2:-0.05}"
 runs="${3:-3}"
-threads="${THREADS:-0}"
-source "$here/common.sh"
 require_jawmesh "$jawmesh"
 require_mandible_case case_dir
 require_runs "$runs"
 require_python3
-make_work_dir out
+make_results_file out results
 
-results="$out/results.jsonl"
-: > "$results"
 for run in $(seq 1 "$runs"); do
   start=$(date +%s.%N)
   json="$("$jawmesh" --quiet --threads "$threads" carve "$case_dir" -o "$out/run$run" --voxel "$voxel" --json)"

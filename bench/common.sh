@@ -1,5 +1,10 @@
 # What every bench script checks before it runs, sourced by them (bash). Each check exits with a
 # message naming what is missing.
+# Sourced first (source "$(dirname "$0")/common.sh"): strict mode, `here` (the bench folder) and
+# `threads` (THREADS, default 0 = all cores) for every script.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+threads="${THREADS:-0}"
 
 require_jawmesh() {  # <path>
   [ -x "$1" ] || { echo "no jawmesh executable at $1 (build it, or pass its path)" >&2; exit 1; }
@@ -30,4 +35,11 @@ make_work_dir() {  # <variable name>
   dir="$(mktemp -d)"
   printf -v "$1" '%s' "$dir"
   trap "rm -rf '$dir'" EXIT
+}
+# A work folder (make_work_dir) holding an empty results.jsonl, one JSON line per run; sets the
+# variables named $1 (the folder) and $2 (the file).
+make_results_file() {  # <folder variable> <file variable>
+  make_work_dir "$1"
+  printf -v "$2" '%s' "${!1}/results.jsonl"
+  : > "${!2}"
 }

@@ -5,17 +5,15 @@
 # Usage: bench/eval.sh <mesh.msh> <case>/input/<jaw> [path/to/jawmesh] [runs]
 # Default mesh/input: the 2-tooth phantom run in ../scratch/ph2run against ../scratch/ph2.
 # Environment: THREADS (default 0 = all cores).
-set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
+source "$(dirname "$0")/common.sh"
 mesh="${1:-$here/../../scratch/ph2run/mandible/volumetric_meshes/mandible.msh}"
 input="${2:-$here/../../scratch/ph2/input/mandible}"
 jawmesh="${3:-$here/../build/cli/jawmesh}"
 runs="${4:-3}"
-threads="${THREADS:-0}"
-[ -x "$jawmesh" ] || { echo "no jawmesh executable at $jawmesh (build it, or pass its path)" >&2; exit 1; }
+require_jawmesh "$jawmesh"
 [ -f "$mesh" ] || { echo "no mesh at $mesh" >&2; exit 1; }
-[ -d "$input" ] || { echo "no input folder at $input" >&2; exit 1; }
-command -v /usr/bin/time >/dev/null || { echo "needs /usr/bin/time (Debian package time)" >&2; exit 1; }
+require_folder "$input" "input folder"
+require_time
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 

@@ -7,14 +7,11 @@
 # before and after is printed too: on a shared machine wall time means little without it.
 # Usage: bench/levelsets.sh [path/to/jawmesh] [voxel_mm] [runs]
 # Environment: JAWMESH_DATA (default: ../shared/data beside the checkout), THREADS (default 0 = all).
-set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
+source "$(dirname "$0")/common.sh"
 jawmesh="${1:-$here/../build/cli/jawmesh}"
 voxel="${2:-0.05}"
 runs="${3:-3}"
 data="${JAWMESH_DATA:-$here/../../shared/data}/openmandible/input/mandible"
-threads="${THREADS:-0}"
-source "$here/common.sh"
 require_jawmesh "$jawmesh"
 require_folder "$data" "shared data"
 require_time

@@ -6,12 +6,9 @@
 # Usage: bench/run_mandible.sh [path/to/jawmesh] [runs]
 # Environment: JAWMESH_DATA (default: ../shared/data beside the checkout), THREADS (default 0 = all),
 #              OUT (keep the last run there).
-set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
+source "$(dirname "$0")/common.sh"
 jawmesh="${1:-$here/../build/cli/jawmesh}"
 runs="${2:-3}"
-threads="${THREADS:-0}"
-source "$here/common.sh"
 require_jawmesh "$jawmesh"
 require_mandible_case case_dir
 require_runs "$runs"

@@ -9,20 +9,15 @@
 #   shared mandible: jawmesh run ../shared/data/openmandible -o out --jaw mandible --write-levelsets,
 #   then out/mandible)
 # Environment: THREADS (default 0 = all), PDL_MAX_EDGE (default 0.8).
-set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
+source "$(dirname "$0")/common.sh"
 carve="${1:?usage: bench/surface.sh <carve-dir> [jawmesh] [runs]}"
 jawmesh="${2:-$here/../build/cli/jawmesh}"
 runs="${3:-3}"
-threads="${THREADS:-0}"
-source "$here/common.sh"
 require_jawmesh "$jawmesh"
 [ -e "$carve/labels.vdb" ] || [ -e "$carve/levelsets/labels.vdb" ] || { echo "no label field in $carve" >&2; exit 1; }
 require_runs "$runs"
 require_python3
-make_work_dir out
-results="$out/results.jsonl"
-: > "$results"
+make_results_file out results
 for run in $(seq 1 "$runs"); do
   "$jawmesh" --quiet --threads "$threads" surface "$carve" -o "$out/run$run" \
     --pdl-max-edge "${PDL_MAX_EDGE:-0.8}" --json | tail -1 >> "$results"

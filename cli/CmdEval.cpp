@@ -15,6 +15,14 @@
 namespace jawmesh {
 namespace {
 
+/// `jawmesh eval --help`: what the command does and writes.
+constexpr const char* kEvalDescription =
+    "Accuracy and quality report of a labeled tet mesh: conformity, element quality per region (radius ratio, "
+    "volume-edge ratio, radius-edge ratio, dihedral angles) with histograms, two-sided Hausdorff and mean distances "
+    "to the input surfaces (crown and root apart), PDL thickness per tooth, cross-section pictures -> "
+    "<dir>/report.json, report.html, sections/*.png";
+
+
 struct EvalCliOptions {
     std::string meshPath;
     std::string inputPath;
@@ -63,12 +71,7 @@ void runEval(const EvalCliOptions& opt, const GlobalOptions& global) {
 
 void addEvalCommand(CLI::App& app, GlobalOptions& global) {
     auto opt = std::make_shared<EvalCliOptions>();
-    auto* cmd = app.add_subcommand(
-        "eval",
-        "Accuracy and quality report of a labeled tet mesh: conformity, element quality per region (radius ratio, "
-        "volume-edge ratio, radius-edge ratio, dihedral angles) with histograms, two-sided Hausdorff and mean distances "
-        "to the input surfaces (crown and root apart), PDL thickness per tooth, cross-section pictures -> "
-        "<dir>/report.json, report.html, sections/*.png");
+    auto* cmd = app.add_subcommand("eval", kEvalDescription);
     cmd->add_option("mesh", opt->meshPath, "Volume mesh (.msh), e.g. <out>/<jaw>/volumetric_meshes/<jaw>.msh")
         ->required()
         ->check(CLI::ExistingFile);

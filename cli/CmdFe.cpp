@@ -25,6 +25,15 @@ namespace fs = std::filesystem;
 namespace jawmesh {
 namespace {
 
+/// `jawmesh fe --help`: what the command does and writes.
+constexpr const char* kFeDescription =
+    "FE decks of a meshed jaw into <out>/<jaw>/simulation/: <scenario>.feb (FEBio 4), <scenario>_polyfem.json "
+    "(+ .msh and selections), <scenario>.inp (CalculiX/Abaqus). Tipping: bone base fixed, 1 N lingual per tooth "
+    "over a labial crown patch; biting (both jaws: the other jaw's mesh is taken from the sibling folder "
+    "<out>/<other jaw>): maxilla top fixed, 200 N up on the mandible base, contact between the crowns. --solve "
+    "runs ccx and writes <scenario>_calculix_summary.json.";
+
+
 struct FeCliOptions {
     std::string jawDir;
     std::string scenario = "tipping";
@@ -110,12 +119,7 @@ void runFe(const FeCliOptions& opt, const GlobalOptions& global) {
 
 void addFeCommand(CLI::App& app, GlobalOptions& global) {
     auto opt = std::make_shared<FeCliOptions>();
-    auto* cmd = app.add_subcommand(
-        "fe",
-        "FE decks of a meshed jaw into <out>/<jaw>/simulation/: <scenario>.feb (FEBio 4), <scenario>_polyfem.json "
-        "(+ .msh and selections), <scenario>.inp (CalculiX/Abaqus). Tipping: bone base fixed, 1 N lingual per tooth "
-        "over a labial crown patch; biting (both jaws: the other jaw's mesh is taken from the sibling folder "
-        "<out>/<other jaw>): maxilla top fixed, 200 N up on the mandible base, contact between the crowns. --solve runs ccx and writes <scenario>_calculix_summary.json.");
+    auto* cmd = app.add_subcommand("fe", kFeDescription);
     cmd->add_option("jaw_dir", opt->jawDir, "A jaw folder of a run: <out>/<jaw>")->required()->check(CLI::ExistingDirectory);
     cmd->add_option("--scenario", opt->scenario, "tipping | biting")->check(CLI::IsMember({"tipping", "biting"}))->capture_default_str();
     cmd->add_option("--format", opt->formats, "Comma-separated: feb,polyfem,inp")

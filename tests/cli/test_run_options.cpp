@@ -15,6 +15,7 @@ TEST(RunOptions, RecordedKeysReadBackToTheSameOptions) {
     changed.simplify.pdlMaxEdgeMm = 0.77;
     changed.simplify.capMaxEdgeMm = 0.07;
     changed.carve.boneShiftMaxMm = 0.15;
+    changed.carve.profile = PdlProfile{0.25, 0.2, 0.15};  // cervical, mid-root, apical mm
     changed.carve.apexTaperMm = 1.5;
     changed.tet.boneEdgeMm = 2.5;
     const nlohmann::json recorded = runOptionsToJson(changed);
@@ -27,6 +28,9 @@ TEST(RunOptions, RecordedKeysReadBackToTheSameOptions) {
     EXPECT_DOUBLE_EQ(back.carve.boneShiftMaxMm, 0.15);
     EXPECT_DOUBLE_EQ(back.carve.apexTaperMm, 1.5);
     EXPECT_DOUBLE_EQ(back.tet.boneEdgeMm, 2.5);
+    ASSERT_TRUE(back.carve.profile.has_value());
+    EXPECT_DOUBLE_EQ(back.carve.profile->cervical, 0.25);
+    EXPECT_DOUBLE_EQ(back.carve.profile->apical, 0.15);
     // Every number the record holds is one the config can set.
     for (const auto& [key, value] : recorded.items()) {
         if (value.is_number()) {

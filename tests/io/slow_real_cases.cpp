@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace jawmesh::test {
@@ -46,27 +48,38 @@ TEST(RealCases, MandibleBoneStlIsWeldedAndClosed) {
     EXPECT_NEAR(signedVolume(bone), 46914.8, 5.0);
 }
 
-/// Whether the case has exactly one jaw, of that kind, with `count` tooth files from UNN `first`
-/// to UNN `last`.
-::testing::AssertionResult hasOneJawWithTeeth(const CaseInfo& info, Jaw jaw, std::size_t count, int first, int last) {
-    if (info.jaws.size() != 1) return ::testing::AssertionFailure() << info.jaws.size() << " jaws";
+/// What a shared single-jaw case holds: its jaw, its tooth files (count, lowest and highest UNN),
+/// whether it has an axes file, and its bone's triangle count.
+struct SharedCase {
+    std::string folder;
+    Jaw jaw;
+    std::size_t teeth;
+    int firstUnn, lastUnn;
+    bool hasAxes;
+    std::size_t boneTriangles;
+};
+
+/// Discovers and reads the case, asserting what `expected` says of it (gtest EXPECTs); the
+/// surfaces read. Throws when the case does not have exactly one jaw.
+JawSurfaces readSharedCase(const SharedCase& expected) {
+    const CaseInfo info = discoverCase(sharedData(expected.folder));
+    if (info.jaws.size() != 1) throw std::runtime_error(expected.folder + ": " + std::to_string(info.jaws.size()) + " jaws");
     const JawCase& jc = info.jaws[0];
-    if (jc.jaw != jaw) return ::testing::AssertionFailure() << "the jaw is " << jawName(jc.jaw);
-    if (jc.toothPaths.size() != count) return ::testing::AssertionFailure() << jc.toothPaths.size() << " teeth";
-    if (jc.toothPaths.begin()->first != first || jc.toothPaths.rbegin()->first != last)
-        return ::testing::AssertionFailure() << "teeth " << jc.toothPaths.begin()->first << " to " << jc.toothPaths.rbegin()->first;
-    return ::testing::AssertionSuccess();
+    EXPECT_EQ(jc.jaw, expected.jaw);
+    EXPECT_EQ(jc.toothPaths.size(), expected.teeth);
+    if (!jc.toothPaths.empty()) {
+        EXPECT_EQ(jc.toothPaths.begin()->first, expected.firstUnn);
+        EXPECT_EQ(jc.toothPaths.rbegin()->first, expected.lastUnn);
+    }
+    EXPECT_EQ(!jc.axesPath.empty(), expected.hasAxes);
+    JawSurfaces s = loadJaw(jc);
+    EXPECT_EQ(s.bone.triangles.size(), expected.boneTriangles);
+    return s;
 }
 
 TEST(RealCases, OpenMandibleCaseHas14TeethAndItsBone) {
-    const std::string root = sharedData("openmandible");
-    JAWMESH_REQUIRE_SHARED(root);
-    const CaseInfo info = discoverCase(root);
-    ASSERT_TRUE(hasOneJawWithTeeth(info, Jaw::Mandible, 14, 18, 31));
-    const JawCase& jc = info.jaws[0];
-    EXPECT_TRUE(jc.axesPath.empty());
-    const JawSurfaces s = loadJaw(jc);
-    EXPECT_EQ(s.bone.triangles.size(), 1686074u);
+    JAWMESH_REQUIRE_SHARED(sharedData("openmandible"));
+    const JawSurfaces s = readSharedCase({"openmandible", Jaw::Mandible, 14, 18, 31, false, 1686074});
     ASSERT_EQ(s.teeth.size(), 14u);
     EXPECT_EQ(s.teeth.at(18).triangles.size(), 53486u);
     EXPECT_EQ(s.teeth.at(31).triangles.size(), 54738u);
@@ -78,14 +91,8 @@ TEST(RealCases, OpenMandibleCaseHas14TeethAndItsBone) {
 }
 
 TEST(RealCases, P26MaxillaHas15TeethWithAxes) {
-    const std::string root = sharedData("p26-maxilla-teeth");
-    JAWMESH_REQUIRE_SHARED(root);
-    const CaseInfo info = discoverCase(root);
-    ASSERT_TRUE(hasOneJawWithTeeth(info, Jaw::Maxilla, 15, 1, 15));
-    const JawCase& jc = info.jaws[0];
-    ASSERT_FALSE(jc.axesPath.empty());
-    const JawSurfaces s = loadJaw(jc);
-    EXPECT_EQ(s.bone.triangles.size(), 567204u);
+    JAWMESH_REQUIRE_SHARED(sharedData("p26-maxilla-teeth"));
+    const JawSurfaces s = readSharedCase({"p26-maxilla-teeth", Jaw::Maxilla, 15, 1, 15, true, 567204});
     ASSERT_EQ(s.axes.size(), 15u);
     for (const auto& [unn, a] : s.axes) {
         ASSERT_TRUE(s.teeth.count(unn));
