@@ -143,15 +143,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
             throw Error(std::string(e.what()) + " (the interface surface is in " + poly + ")");
         }
     });
-    record["tetgen"] = {{"hole_repair", toJson(tetStats.holeRepair)},
-                        {"switches", tetStats.switches},
-                        {"attempts", tetStats.attempts},
-                        {"failed_attempts", tetStats.failedAttempts},
-                        {"refine_rounds", tetStats.refineRounds},
-                        {"refined_edges", tetStats.refinedEdges},
-                        {"refinement_child_peak_memory_bytes", tetStats.childPeakMemoryBytes},
-                        {"seconds", tetStats.seconds},
-                        {"sliver_improvement", toJson(tetStats.slivers)}};
+    record["tetgen"] = toJson(tetStats);
 
     const ValidationReport report =
         log.run(jaw + ": validate", progress, [&] { return requireValid(mesh, teeth); });

@@ -277,4 +277,16 @@ TetMesh tetrahedralize(const InterfaceComplex& input, const TetOptions& options,
     return std::move(ladder.best);
 }
 
+nlohmann::json toJson(const TetStats& stats) {
+    return {{"hole_repair", toJson(stats.holeRepair)},
+            {"switches", stats.switches},
+            {"attempts", stats.attempts},
+            {"failed_attempts", stats.failedAttempts},
+            {"refine_rounds", stats.refineRounds},
+            {"refined_edges", stats.refinedEdges},
+            {"refinement_child_peak_memory_bytes", stats.childPeakMemoryBytes},
+            {"seconds", stats.seconds},
+            {"sliver_improvement", toJson(stats.slivers)}};
+}
+
 }  // namespace jawmesh

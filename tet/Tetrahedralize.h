@@ -10,6 +10,8 @@
 #include "io/TetMesh.h"
 #include "tet/ImproveSlivers.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -80,6 +82,10 @@ struct TetStats {
     /// (filters/FillSurfaceHoles.h); inputVertices / inputTriangles count the complex as given.
     HoleFillStats holeRepair;
 };
+
+/// As run.json's "tetgen" records it: switches, attempts, failed_attempts, refine_rounds,
+/// refined_edges, refinement_child_peak_memory_bytes, seconds, hole_repair and sliver_improvement.
+nlohmann::json toJson(const TetStats& stats);
 
 /// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.
 double tetVolumeForEdge(double edgeMm);
