@@ -70,7 +70,7 @@ case "${1:-}" in
     ctest --test-dir build -L slow --output-on-failure -j "$(nproc)"
     ;;
   mandible-test)
-    # The whole pipeline on the shared mandible (15-45 min on 2 cores), then the tests that check a
+    # The whole pipeline on the shared mandible (about 3 minutes on 2 cores), then the tests that check a
     # finished run (tests/cli/slow_run_mandible.cpp, SlowEval, the interface surface
     # against the run's label field); not part of CI's time.
     install_packages
