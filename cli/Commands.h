@@ -32,9 +32,6 @@ struct CommandRegistration {
 /// Adds every registered subcommand to app.
 void addRegisteredCommands(CLI::App& app, GlobalOptions& global);
 
-/// One line for a command-line error: CLI11's message (it names the option) and where help is.
-std::string usageErrorLine(const CLI::App& app, const CLI::ParseError& error);
-
 /// The terminal progress reporter of this process (quiet or not per the global options).
 Progress& terminalProgress(const GlobalOptions& global);
 

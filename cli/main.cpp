@@ -22,16 +22,8 @@ std::vector<std::pair<int, CommandAdder>>& registry() {
     static std::vector<std::pair<int, CommandAdder>> commands;
     return commands;
 }
-}  // namespace
 
-CommandRegistration::CommandRegistration(int order, CommandAdder add) { registry().emplace_back(order, add); }
-
-void addRegisteredCommands(CLI::App& app, GlobalOptions& global) {
-    auto commands = registry();
-    std::stable_sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& entry : commands) entry.second(app, global);
-}
-
+/// One line for a command-line error: CLI11's message (it names the option) and where help is.
 std::string usageErrorLine(const CLI::App& app, const CLI::ParseError& error) {
     // An argument nobody takes is the user's mistake even when CLI11 first finds a missing one.
     const std::vector<std::string> extra = app.remaining(true);
@@ -43,6 +35,15 @@ std::string usageErrorLine(const CLI::App& app, const CLI::ParseError& error) {
         command += " " + sub->get_name();
     }
     return message + " (see `" + command + " --help`)";
+}
+}  // namespace
+
+CommandRegistration::CommandRegistration(int order, CommandAdder add) { registry().emplace_back(order, add); }
+
+void addRegisteredCommands(CLI::App& app, GlobalOptions& global) {
+    auto commands = registry();
+    std::stable_sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& entry : commands) entry.second(app, global);
 }
 
 Progress& terminalProgress(const GlobalOptions& global) {

@@ -370,8 +370,8 @@ struct CarveContext {
     FloatGrid::Ptr boneOut;  ///< the bone's distance grid, carved near the teeth
     std::chrono::steady_clock::time_point lastLap;
 
-    CarveContext(const FloatGrid& b, const CarveOptions& o, Progress& pr, CarveSummary& s)
-        : bone(b), options(o), progress(pr), summary(s), lastLap(std::chrono::steady_clock::now()) {}
+    CarveContext(const FloatGrid& b, const CarveOptions& o, Progress& pr, CarveSummary& s, std::chrono::steady_clock::time_point start)
+        : bone(b), options(o), progress(pr), summary(s), lastLap(start) {}
     const openvdb::math::Transform& xf() const { return bone.transform(); }
     /// Records the phase just finished: wall seconds since the last lap, peak memory so far.
     void lap(const char* name) {
@@ -644,11 +644,13 @@ void measureTeeth(CarveContext& ctx) {
         else if (s.impacted)
             summary.warnings.push_back("tooth " + std::to_string(t.unn) + " is fully inside bone: closed PDL envelope");
         if (ctx.rules.profile && !t.hasRoot)
-            summary.warnings.push_back("tooth " + std::to_string(t.unn) + ": no root found for the thickness profile; uniform mid-root value used");
+            summary.warnings.push_back("tooth " + std::to_string(t.unn) +
+                                       ": no root found for the thickness profile; uniform mid-root value used");
         summary.teeth.push_back(s);
     }
     if (summary.toothBoneContacts)
-        summary.warnings.push_back(std::to_string(summary.toothBoneContacts) + " tooth voxels touch bone directly (PDL widening under 2 voxels?)");
+        summary.warnings.push_back(std::to_string(summary.toothBoneContacts) +
+                                   " tooth voxels touch bone directly (PDL widening under 2 voxels?)");
 }
 
 }  // namespace
@@ -658,8 +660,7 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
     const auto start = std::chrono::steady_clock::now();
     validate(options, bone, teethIn);
     summary = CarveSummary();
-    CarveContext ctx(bone, options, progress, summary);
-    ctx.lastLap = start;
+    CarveContext ctx(bone, options, progress, summary, start);
     ctx.rules = rulesOf(options, bone);
     ctx.boneL = boneLabel(jaw);
     summary.voxelSizeMm = ctx.rules.voxel;

@@ -226,8 +226,7 @@ openvdb::FloatGrid::Ptr withoutInternalTriangles(openvdb::FloatGrid::Ptr grid, c
     for (std::size_t t = 0; t < oriented.triangles.size(); ++t)
         if (!internal[t]) boundary.push_back(oriented.triangles[t]);
     SubProgress again(progress, 0.95, 0.99);
-    const auto transform = openvdb::math::Transform::createLinearTransform(voxelSizeMm);
-    openvdb::FloatGrid::Ptr rebuilt = unsignedBand(indexVertices, boundary, transform, voxelSizeMm, halfWidthVoxels, again);
+    openvdb::FloatGrid::Ptr rebuilt = unsignedBand(indexVertices, boundary, grid->transformPtr(), voxelSizeMm, halfWidthVoxels, again);
     openvdb::tree::LeafManager<openvdb::FloatTree> newLeaves(rebuilt->tree());
     newLeaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
         auto acc = grid->getConstAccessor();
