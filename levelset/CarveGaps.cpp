@@ -4,12 +4,10 @@
 #include "io/Error.h"
 #include "io/ResourceUsage.h"
 #include "levelset/CarveMeasure.h"
+#include "levelset/CarveRules.h"
 #include "levelset/Csg.h"
 
-#include <Eigen/Eigenvalues>
-#include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/LevelSetUtil.h>
-#include <openvdb/tools/Morphology.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
 
@@ -31,91 +29,7 @@ double pdlThicknessAt(const PdlProfile& p, double s) {
 
 namespace {
 
-using openvdb::Coord;
-using openvdb::CoordBBox;
-using openvdb::FloatGrid;
-using openvdb::Vec3d;
-using FloatAcc = FloatGrid::ConstAccessor;
-
-/// Tooth and bone surfaces "face each other" (a gap to bridge) when their outward normals make an
-/// angle above 135 degrees.
-constexpr double kFacingCos = 0.70710678118654752;
-
-/// Thinnest and thickest PDL asked for anywhere on a root (the profile's, else the uniform one), mm.
-std::pair<double, double> thicknessRangeMm(const std::optional<PdlProfile>& profile, double uniformMm) {
-    if (!profile) return {uniformMm, uniformMm};
-    return {std::min({profile->cervical, profile->midRoot, profile->apical}),
-            std::max({profile->cervical, profile->midRoot, profile->apical})};
-}
-
-struct CarveRules {
-    double voxel = 0.05;
-    double ratio = 0.5;
-    double uniformThickness = 0.2;
-    std::optional<PdlProfile> profile;
-    double gapBridge = 0.5;
-    double boneShiftMax = 0.2;
-    double apexTaper = 1.0;
-    double clearance = 0.05;
-    double far = 0.7;     ///< distances beyond the gap-bridging reach are reported as this (mm)
-};
-
-/// Per-tooth working data.
-struct ToothWork {
-    int unn = 0;
-    Label toothL = 0, pdlL = 0;
-    FloatGrid::ConstPtr T;   ///< tooth distance: input band, plus exterior distances where bone is
-                             ///< within gap-bridging reach; +-far elsewhere outside the band
-    FloatGrid::Ptr X;        ///< bone distance off the bone band where this tooth is within reach:
-                             ///< outside (gaps) and inside down to boneShiftMax (overlaps)
-    CoordBBox box;           ///< index bounds of T's active voxels
-    bool hasRoot = false;    ///< axis, cervical and apical heights found (fitRootAxis)
-    Vec3d origin{0, 0, 0}, axis{0, 0, 1};  ///< axis points from the root to the crown
-    double hCervical = 0, hApex = 0;
-};
-
-/// Height of a world point along the tooth's long axis (mm; the crown is up).
-double heightOf(const ToothWork& t, const Vec3d& world) { return (world - t.origin).dot(t.axis); }
-
-/// PDL thickness at height h (heightOf) on the tooth's axis.
-double thicknessAt(const ToothWork& t, const CarveRules& rules, double h) {
-    if (!rules.profile || !t.hasRoot) return rules.uniformThickness;
-    const double s = (t.hCervical - h) / std::max(t.hCervical - t.hApex, 1e-6);
-    return pdlThicknessAt(*rules.profile, s);
-}
-
-/// Share of the root erosion applied at a point: 1 except over the last apexTaper mm to the apex,
-/// where it falls linearly to kApexErosionShare. Eroding a pointed apex by e pulls the tip back by
-/// e / sin(half angle), more than e (0.178 mm for e = 0.1 on the shared mandible's tooth 22); the
-/// socket side takes the rest of the thickness. Half, not none: the bone at the apex then moves
-/// 0.15 mm rather than 0.2, which leaves room for the input's overlaps within #5's 0.25 mm.
-constexpr double kApexErosionShare = 0.5;
-
-/// Thinnest PDL an overlap of root and bone may leave, as a share of the thickness t (evalLocal).
-constexpr double kMinPdlShare = 0.5;
-
-double erosionShare(const ToothWork& t, const CarveRules& rules, double h) {
-    if (!t.hasRoot || rules.apexTaper <= 0) return 1.0;
-    const double s = std::clamp((h - t.hApex) / rules.apexTaper, 0.0, 1.0);
-    return kApexErosionShare + (1.0 - kApexErosionShare) * s;
-}
-
-/// Signed bone distance: the tooth's extension X (exterior voxels within reach), else the input
-/// band (active voxels are exact even at |value| = background), else "far" outside and the
-/// clamped value inside (deep bone is in the socket anyway).
-inline double signedBone(FloatAcc& B, FloatAcc& X, const CarveRules& rules, const Coord& c) {
-    float v;
-    if (X.probeValue(c, v)) return v;
-    if (B.probeValue(c, v)) return v;  // band: exact, even at |v| = background
-    return v > 0 ? rules.far : v;
-}
-
-/// Whether signedBone is a distance at c (X or the band), not a clamp without a direction.
-inline bool boneKnown(FloatAcc& B, FloatAcc& X, const Coord& c) { return X.isValueOn(c) || B.isValueOn(c); }
-
-/// The next double below x: turns "x <= 0" into the strict test "below(x) < 0".
-inline double below(double x) { return std::nextafter(x, -std::numeric_limits<double>::infinity()); }
-
+using namespace carve;
 /// What one tooth's rules say at one voxel (before the clearance between teeth).
 struct Local {
     double T = 0;      ///< tooth distance
@@ -197,135 +111,6 @@ double bisector(int k, const std::vector<int>& cand, Accessors& acc, const Coord
     for (int m : cand)
         if (m != k) v = std::max(v, 0.5 * (tk - acc.T[m].getValue(c) + clearance));
     return v;
-}
-
-/// Long axis of the tooth and the cervical / apical heights along it, for the thickness profile
-/// and the apex taper of the erosion.
-void fitRootAxis(ToothWork& t, const CarveRules& rules, const FloatGrid& bone, const CarveOptions& options) {
-    const auto& xf = t.T->transform();
-    std::vector<Vec3d> surface;
-    std::vector<char> contact;
-    auto T = t.T->getConstAccessor();
-    auto X = t.X->getConstAccessor();
-    auto B = bone.getConstAccessor();
-    const double eCervical = rules.ratio * (rules.profile ? rules.profile->cervical : rules.uniformThickness);
-    for (auto it = t.T->tree().cbeginValueOn(); it; ++it) {
-        const double v = *it;
-        if (v >= 0 || v < -2 * rules.voxel) continue;
-        surface.push_back(xf.indexToWorld(it.getCoord()));
-        contact.push_back(signedBone(B, X, rules, it.getCoord()) < eCervical + rules.voxel);
-    }
-    if (surface.empty()) return;
-    Vec3d mean(0, 0, 0);
-    for (const auto& p : surface) mean += p;
-    mean /= double(surface.size());
-    const auto axes = options.axes.find(t.unn);
-    if (axes != options.axes.end()) {
-        t.origin = Vec3d(axes->second.crownCentre.x(), axes->second.crownCentre.y(), axes->second.crownCentre.z());
-        const auto& a = axes->second.occlusal;
-        t.axis = Vec3d(a.x(), a.y(), a.z()).unit();
-    } else {
-        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-        for (const auto& p : surface) {
-            const Eigen::Vector3d d(p[0] - mean[0], p[1] - mean[1], p[2] - mean[2]);
-            cov += d * d.transpose();
-        }
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
-        const Eigen::Vector3d a = es.eigenvectors().col(2);
-        t.origin = mean;
-        t.axis = Vec3d(a.x(), a.y(), a.z());
-        // Orient towards the crown: the root (bone contact) lies on the negative side.
-        double hc = 0;
-        std::size_t nc = 0;
-        for (std::size_t i = 0; i < surface.size(); ++i)
-            if (contact[i]) hc += heightOf(t, surface[i]), ++nc;
-        if (nc && hc / double(nc) > 0) t.axis = -t.axis;
-    }
-    std::vector<double> hContact;
-    t.hApex = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < surface.size(); ++i) {
-        const double h = heightOf(t, surface[i]);
-        t.hApex = std::min(t.hApex, h);
-        if (contact[i]) hContact.push_back(h);
-    }
-    if (hContact.empty()) return;
-    std::sort(hContact.begin(), hContact.end());
-    t.hCervical = hContact[std::size_t(0.95 * double(hContact.size() - 1))];
-    t.hasRoot = t.hCervical > t.hApex;
-}
-
-/// The working fields of one tooth. The tooth band is used as given (re-normalised only when the
-/// input band is narrower than the PDL rules need). Gap bridging needs T and B beyond their bands,
-/// but only where a gap can be: outside both, with T + B < gapBridge, so T < gapBridge and
-/// B < gapBridge + e. There (and only there) both are extended by closest-point propagation
-/// (extendExteriorDistance): B within reach of the tooth, then T where bone is near.
-void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, const CarveRules& rules, double exVoxels,
-                  double inVoxels, const CarveOptions& options) {
-    FloatGrid::Ptr T;
-    if (bandHalfWidthMm(tooth) >= std::max(exVoxels, inVoxels) * rules.voxel - 1e-6)
-        T = tooth.deepCopy();
-    else
-        T = renormalizeLevelSet(tooth, exVoxels + 1, inVoxels + 1);
-    const double bgT = bandHalfWidthMm(*T);
-    // Chebyshev dilation of the band by `reach` voxels covers every point with T < gapBridge.
-    const int reach = std::max(0, int(std::ceil((rules.gapBridge - bgT) / rules.voxel)) + 1);
-    openvdb::MaskTree near(T->tree(), false, openvdb::TopologyCopy());
-    if (reach > 0)
-        openvdb::tools::dilateActiveValues(near, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
-    // Bone distances are not needed deeper in the tooth than e (there it is tooth whatever B is).
-    const double eMax = rules.ratio * thicknessRangeMm(rules.profile, rules.uniformThickness).second;
-    {
-        const float deep = float(-(eMax + rules.voxel));
-        auto ta = T->getConstAccessor();
-        for (auto leaf = near.beginLeaf(); leaf; ++leaf)
-            for (openvdb::Index i = 0; i < openvdb::MaskTree::LeafNodeType::SIZE; ++i)
-                if (leaf->isValueOn(i) && ta.getValue(leaf->offsetToGlobalCoord(i)) < deep) leaf->setValueOff(i);
-    }
-    t.X = extendExteriorDistance(bone, near, rules.far);
-    t.T = T;
-    fitRootAxis(t, rules, bone, options);
-    openvdb::MaskTree nearBone(t.X->tree(), false, openvdb::TopologyCopy());
-    for (auto leaf = near.cbeginLeaf(); leaf; ++leaf)
-        if (const auto* bl = bone.tree().probeConstLeaf(leaf->origin()))
-            nearBone.touchLeaf(leaf->origin())->getValueMask() |= bl->getValueMask();
-    // Near the apex the socket side widens by what the erosion gives up (erosionShare), past the
-    // band: T is needed there whether or not the bone band reaches.
-    if (t.hasRoot && rules.apexTaper > 0) {
-        const auto& xf = T->transform();
-        const double top = t.hApex + rules.apexTaper + rules.voxel;
-        for (auto leaf = near.cbeginLeaf(); leaf; ++leaf) {
-            openvdb::MaskTree::LeafNodeType* out = nullptr;
-            for (auto v = leaf->cbeginValueOn(); v; ++v)
-                if (heightOf(t, xf.indexToWorld(v.getCoord())) < top) {
-                    if (!out) out = nearBone.touchLeaf(leaf->origin());
-                    out->setValueOn(v.pos());
-                }
-        }
-    }
-    nearBone.topologyIntersection(near);
-    const auto Tx = extendExteriorDistance(*T, nearBone, rules.far);
-    openvdb::tools::changeLevelSetBackground(T->tree(), float(rules.far));
-    auto ta = T->getAccessor();
-    for (auto it = Tx->tree().cbeginValueOn(); it; ++it) ta.setValue(it.getCoord(), *it);
-    t.box = T->evalActiveVoxelBoundingBox();
-    // Overlaps of root and bone (evalLocal) need B inside the bone down to boneShiftMax, past its
-    // band, and its gradient a voxel farther, but only around band voxels where the overlap
-    // (T + B, with B clamped: an upper bound) is already deeper than the least one the rule acts
-    // on (boneShiftMax - w, w at most t - e / 2 at the apex), two voxels beyond for the gradient.
-    const auto [tMin, tMax] = thicknessRangeMm(rules.profile, rules.uniformThickness);
-    const double gTrigger = tMax - kApexErosionShare * rules.ratio * tMin - rules.boneShiftMax;
-    openvdb::MaskTree overlap(false);
-    {
-        auto ba = bone.getConstAccessor();
-        auto oa = openvdb::tree::ValueAccessor<openvdb::MaskTree>(overlap);
-        for (auto it = tooth.tree().cbeginValueOn(); it; ++it)
-            if (*it + ba.getValue(it.getCoord()) < gTrigger) oa.setValueOn(it.getCoord());
-    }
-    if (overlap.empty()) return;
-    openvdb::tools::dilateActiveValues(overlap, 2, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
-    const auto inside = extendInteriorDistance(bone, overlap, rules.boneShiftMax + 3 * rules.voxel);
-    auto xa = t.X->getAccessor();
-    for (auto it = inside->tree().cbeginValueOn(); it; ++it) xa.setValue(it.getCoord(), *it);
 }
 
 void validate(const CarveOptions& o, const FloatGrid& bone, const std::map<int, FloatGrid::ConstPtr>& teeth) {
