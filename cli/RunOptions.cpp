@@ -71,10 +71,22 @@ const NumberKey kNumberKeys[] = {
     {"tet_interface_push_mm", [](RunOptions& o) -> double& { return o.tet.slivers.interfacePushMm; }, 0, 0.05},
 };
 
+/// A whole-number key from lo to hi, when present: 2.5 levels is a mistake, not 2.
+void readWholeKey(const nlohmann::json& j, const std::string& path, const char* key, int lo, int hi, int& out) {
+    if (!j.contains(key)) return;
+    const double value = j.at(key).get<double>();
+    if (value != std::floor(value) || !(value >= lo && value <= hi))
+        throw Error(path, "'" + std::string(key) + "' must be a whole number from " + std::to_string(lo) + " to " +
+                              std::to_string(hi));
+    out = int(value);
+}
+
 void checkRanges(const std::string& name, RunOptions& o) {
     for (const auto& k : kNumberKeys) requireRange(name, k.key, k.ref(o), k.lo, k.hi, k.loOpen);
     const int levels = o.extract.adaptive.maxLevel;
     requireRange(name, "surface_adaptive_levels", levels, 0, 6);
+    const int gap = o.extract.adaptive.layerGapVoxels;
+    requireRange(name, "surface_layer_gap_voxels", gap, 0, 8);
     if (o.carve.profile) {
         requireRange(name, "pdl_profile_mm", o.carve.profile->cervical, 0, 10, true);
         requireRange(name, "pdl_profile_mm", o.carve.profile->midRoot, 0, 10, true);
@@ -105,6 +117,7 @@ nlohmann::json runOptionsToJson(const RunOptions& options) {
     nlohmann::json j = nlohmann::json::object();
     for (const auto& k : kNumberKeys) j[k.key] = k.ref(o);
     j["surface_adaptive_levels"] = o.extract.adaptive.maxLevel;
+    j["surface_layer_gap_voxels"] = o.extract.adaptive.layerGapVoxels;
     j["write_levelsets"] = o.writeLevelSets;
     j["from_vdb"] = o.fromVdb;
     if (o.carve.profile)
@@ -134,12 +147,8 @@ void applyRunConfigText(const std::string& text, const std::string& path, RunOpt
         if (!known.contains(key) && key != "pdl_profile_mm") throw Error(path, "unknown config key '" + key + "'");
     try {
         for (const auto& k : kNumberKeys) readKey(j, k.key, k.ref(o));
-        if (j.contains("surface_adaptive_levels")) {  // a whole number: 2.5 levels is a mistake, not 2
-            const double levels = j.at("surface_adaptive_levels").get<double>();
-            if (levels != std::floor(levels) || !(levels >= 0 && levels <= 6))
-                throw Error(path, "'surface_adaptive_levels' must be a whole number from 0 to 6");
-            o.extract.adaptive.maxLevel = int(levels);
-        }
+        readWholeKey(j, path, "surface_adaptive_levels", 0, 6, o.extract.adaptive.maxLevel);
+        readWholeKey(j, path, "surface_layer_gap_voxels", 0, 8, o.extract.adaptive.layerGapVoxels);
         readKey(j, "write_levelsets", o.writeLevelSets);
         readKey(j, "from_vdb", o.fromVdb);
         if (j.contains("pdl_profile_mm")) {

@@ -40,17 +40,49 @@ int floorShift(int x, int level) { return x >= 0 ? x >> level : -((-x + (1 << le
 Coord scaled(const Coord& c, int s) { return Coord(c.x() * s, c.y() * s, c.z() * s); }
 Coord blockOf(const Coord& c, int level) { return Coord(floorShift(c.x(), level), floorShift(c.y(), level), floorShift(c.z(), level)); }
 
-/// The block's label pair when it is one disc and the cube ringVoxels larger around it is one disc
-/// of the same pair (no other sheet, no third label nearby).
-std::optional<std::array<Label, 2>> blockPair(const openvdb::Int32Grid::ConstAccessor& labels, const Coord& lo, int level,
-                                              int ringVoxels) {
+/// A sheet that a block's cells may merge into one vertex: its label pair and, for a sheet of a
+/// layer, the outer label that its cells hold (the other sheet's cells do not).
+struct Sheet {
+    std::array<Label, 2> sides;
+    std::optional<Label> outer;
+};
+
+/// The sheets of block lo at `level`: its one pair when the block and the cube ringVoxels larger
+/// around it are one disc of it (no other sheet, no third label nearby); else, when that cube is a
+/// layer (CoarseBlocks.h), the layer's sheets that the block holds, each one disc in the block.
+std::vector<Sheet> blockSheets(const LabelWindow& labels, const Coord& lo, int level,
+                               int ringVoxels, int layerGapVoxels) {
     const int size = 1 << level;
     const Coord voxelLo(lo.x() * size, lo.y() * size, lo.z() * size);
     const auto any = [](Label, Label) { return true; };
     const auto pair = blockIsOneDisc(labels, voxelLo, size, any);
-    if (!pair || ringVoxels <= 0) return pair;
-    const auto ring = blockIsOneDisc(labels, voxelLo.offsetBy(-ringVoxels), size + 2 * ringVoxels, any);
-    return ring && *ring == *pair ? pair : std::nullopt;
+    const int ring = std::max(ringVoxels, 0);
+    if (pair && ring == 0) return {{*pair, std::nullopt}};
+    if (pair) {
+        const auto around = blockIsOneDisc(labels, voxelLo.offsetBy(-ring), size + 2 * ring, any);
+        if (around && *around == *pair) return {{*pair, std::nullopt}};
+    }
+    if (layerGapVoxels <= 0) return {};
+    const auto layer = blockIsLayer(labels, voxelLo.offsetBy(-ring), size + 2 * ring, layerGapVoxels);
+    if (!layer) return {};
+    const auto sheetOf = [&](Label outer) {
+        return Sheet{{std::min(outer, layer->middle), std::max(outer, layer->middle)}, outer};
+    };
+    if (pair) {  // one sheet of the layer crosses the block
+        for (Label outer : layer->outer)
+            if (*pair == sheetOf(outer).sides) return {sheetOf(outer)};
+        return {};
+    }
+    const auto inner = ring == 0 ? layer : blockIsLayer(labels, voxelLo, size, layerGapVoxels);
+    if (!inner || inner->middle != layer->middle || inner->outer != layer->outer) return {};
+    return {sheetOf(layer->outer[0]), sheetOf(layer->outer[1])};
+}
+
+/// Whether dual cell c holds a voxel of label l.
+bool cellHolds(const LabelWindow& labels, const Coord& c, Label l) {
+    for (int k = 0; k < 8; ++k)
+        if (labels.at(dualCellCorner(c, k)) == l) return true;
+    return false;
 }
 
 /// Top-level blocks within `clearanceMm` of a dual cell at a tooth or PDL quad (26-neighbour
@@ -71,12 +103,24 @@ openvdb::BoolGrid::Ptr blocksNearTeeth(const std::vector<DualQuad>& quads, const
     return near;
 }
 
-void chooseBlocks(const openvdb::Int32Grid::ConstAccessor& labels, const std::vector<Coord>& cells, const Coord& lo,
-                  int level, int ringVoxels, std::vector<std::int32_t> members, std::vector<Block>& out);
+/// Where blocks may merge: the ring and the layer gap of AdaptiveOptions.
+struct MergeRule {
+    int ringVoxels = 1;
+    int layerGapVoxels = 0;
+};
+
+void chooseBlocks(const LabelWindow& labels, const std::vector<Coord>& cells, const Coord& lo,
+                  int level, const MergeRule& rule, std::vector<std::int32_t> members, std::vector<Block>& out);
+
+/// The labels that block lo at `level` and its children are tested on: the block and its ring.
+LabelWindow windowOf(const openvdb::Int32Grid::ConstAccessor& labels, const Coord& lo, int level, const MergeRule& rule) {
+    const int size = 1 << level, ring = std::max(rule.ringVoxels, 0);
+    return LabelWindow(labels, scaled(lo, size).offsetBy(-ring), size + 1 + 2 * ring);
+}
 
 /// Block lo at `level` tried as its eight children (chooseBlocks on each).
-void chooseInChildren(const openvdb::Int32Grid::ConstAccessor& labels, const std::vector<Coord>& cells, const Coord& lo,
-                      int level, int ringVoxels, const std::vector<std::int32_t>& members, std::vector<Block>& out) {
+void chooseInChildren(const LabelWindow& labels, const std::vector<Coord>& cells, const Coord& lo,
+                      int level, const MergeRule& rule, const std::vector<std::int32_t>& members, std::vector<Block>& out) {
     std::vector<std::int32_t> child[8];
     const int half = 1 << (level - 1);
     for (std::int32_t m : members) {
@@ -85,24 +129,26 @@ void chooseInChildren(const openvdb::Int32Grid::ConstAccessor& labels, const std
     }
     for (int k = 0; k < 8; ++k)
         chooseBlocks(labels, cells, Coord(2 * lo.x() + (k & 1), 2 * lo.y() + ((k >> 1) & 1), 2 * lo.z() + ((k >> 2) & 1)),
-                     level - 1, ringVoxels, std::move(child[k]), out);
+                     level - 1, rule, std::move(child[k]), out);
 }
 
-/// The blocks among `members` (cells of block lo at `level`) that pass the disc test, largest
-/// first: a block that fails is tried as its eight children.
-void chooseBlocks(const openvdb::Int32Grid::ConstAccessor& labels, const std::vector<Coord>& cells, const Coord& lo,
-                  int level, int ringVoxels, std::vector<std::int32_t> members, std::vector<Block>& out) {
+/// The blocks among `members` (cells of block lo at `level`) that pass the disc or layer test,
+/// largest first: a block that fails is tried as its eight children. A layer gives a block per
+/// sheet, each with the members that hold its outer label.
+void chooseBlocks(const LabelWindow& labels, const std::vector<Coord>& cells, const Coord& lo,
+                  int level, const MergeRule& rule, std::vector<std::int32_t> members, std::vector<Block>& out) {
     if (level <= 0 || members.empty()) return;
-    if (const auto pair = blockPair(labels, lo, level, ringVoxels)) {
+    const std::vector<Sheet> sheets = blockSheets(labels, lo, level, rule.ringVoxels, rule.layerGapVoxels);
+    if (sheets.empty()) return chooseInChildren(labels, cells, lo, level, rule, members, out);
+    for (const Sheet& sheet : sheets) {
         Block b;
         b.lo = lo;
         b.level = level;
-        b.members = std::move(members);
-        b.sides = *pair;
-        out.push_back(std::move(b));
-        return;
+        b.sides = sheet.sides;
+        for (std::int32_t m : members)
+            if (!sheet.outer || cellHolds(labels, cells[std::size_t(m)], *sheet.outer)) b.members.push_back(m);
+        if (!b.members.empty()) out.push_back(std::move(b));
     }
-    chooseInChildren(labels, cells, lo, level, ringVoxels, members, out);
 }
 
 /// The member whose vertex is nearest the mean of the members' vertices (lowest index on ties).
@@ -206,6 +252,7 @@ struct Scratch {
     std::vector<std::array<Label, 2>> fanSides, edgeSides;
     std::vector<EdgeFanTriangle> wedge;
     std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+    std::vector<std::pair<Vec3, double>> spheres;  ///< per fan triangle: centre and radius, mm
 };
 
 /// The wedge of every region at edge a-b, from the triangles `tris` (sides `sides`) that have both.
@@ -263,18 +310,29 @@ bool fanShapeOk(const Mesh& mesh, std::int32_t x, Scratch& s, double cosMinAngle
 /// The block's fine vertices from its triangles (each carried by the nearest) and the triangles'
 /// sample points from the fine surface: fills carriers and both errors; false when one exceeds
 /// its bound (mm). Stops early then.
-bool errorsWithin(Block& b, const Mesh& mesh, const Scratch& s, double carriedMm, double sampleMm) {
+bool errorsWithin(Block& b, const Mesh& mesh, Scratch& s, double carriedMm, double sampleMm) {
     const auto& P = mesh.P;
     const auto corner = [&](const Tri& t, int k) -> const Vec3& { return P[std::size_t(t[std::size_t(k)])]; };
     double worst2 = 0;
     b.carrier.assign(b.members.size(), -1);
+    // each fan triangle's bounding sphere: one farther than the nearest so far is not looked at
+    s.spheres.clear();
+    for (const Tri& t : s.fan) {
+        const Vec3 c = (corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3.0;
+        const double r2 = std::max({(corner(t, 0) - c).squaredNorm(), (corner(t, 1) - c).squaredNorm(), (corner(t, 2) - c).squaredNorm()});
+        s.spheres.push_back({c, std::sqrt(r2)});
+    }
     for (std::size_t i = 0; i < b.members.size(); ++i) {
         const Vec3& x = P[std::size_t(b.members[i])];
-        double d2 = std::numeric_limits<double>::infinity();
+        double d2 = std::numeric_limits<double>::infinity(), d = d2;
         for (std::size_t t = 0; t < s.fan.size(); ++t) {
+            const auto& [centre, radius] = s.spheres[t];
+            const double reach = (d + radius) * (1.0 + 1e-9);  // a margin over rounding: the same nearest
+            if ((x - centre).squaredNorm() > reach * reach) continue;
             const double e = squaredDistanceToTriangle(x, corner(s.fan[t], 0), corner(s.fan[t], 1), corner(s.fan[t], 2));
             if (e < d2) {
                 d2 = e;
+                d = std::sqrt(e);
                 b.carrier[i] = std::int32_t(t);  // index into the fan; made a triangle id at the end
             }
         }
@@ -378,7 +436,7 @@ VertexTriangles quadsOfCells(const std::vector<DualQuad>& quads, std::size_t cel
 
 /// Every cell in its top-level block, each block tried largest first (parallel, in block order).
 std::vector<Block> initialBlocks(const openvdb::Int32Grid& labels, const std::vector<Coord>& cells, int top,
-                                 int ringVoxels) {
+                                 const MergeRule& rule) {
     std::vector<std::pair<Coord, std::int32_t>> byBlock(cells.size());
     for (std::size_t c = 0; c < cells.size(); ++c) byBlock[c] = {blockOf(cells[c], top), std::int32_t(c)};
     tbb::parallel_sort(byBlock.begin(), byBlock.end());  // by block, then cell: the cells' order within a block
@@ -388,10 +446,11 @@ std::vector<Block> initialBlocks(const openvdb::Int32Grid& labels, const std::ve
     groupStart.push_back(byBlock.size());
     std::vector<std::vector<Block>> chosen(groupStart.size() - 1);
     tbb::parallel_for(std::size_t(0), chosen.size(), [&](std::size_t g) {
-        auto acc = labels.getConstAccessor();
+        const auto acc = labels.getConstAccessor();
         std::vector<std::int32_t> members;
         for (std::size_t i = groupStart[g]; i < groupStart[g + 1]; ++i) members.push_back(byBlock[i].second);
-        chooseBlocks(acc, cells, byBlock[groupStart[g]].first, top, ringVoxels, std::move(members), chosen[g]);
+        const Coord lo = byBlock[groupStart[g]].first;
+        chooseBlocks(windowOf(acc, lo, top, rule), cells, lo, top, rule, std::move(members), chosen[g]);
     });
     std::vector<Block> blocks;
     for (auto& v : chosen)
@@ -451,14 +510,14 @@ std::vector<std::size_t> failingBlocks(Mesh& mesh, const std::vector<char>& dirt
 /// their children and the blocks around them are marked dirty. The children are chosen in
 /// parallel (they depend on the labels alone), then put in place in the order of `split`.
 void splitBlocks(Mesh& mesh, const std::vector<std::size_t>& split, bool toFine, const openvdb::Int32Grid& labels,
-                 const std::vector<Coord>& cells, int ringVoxels, std::vector<char>& dirty) {
+                 const std::vector<Coord>& cells, const MergeRule& rule, std::vector<char>& dirty) {
     std::vector<std::vector<Block>> children(split.size());
     if (!toFine)
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, split.size(), 16), [&](const auto& r) {
-            auto acc = labels.getConstAccessor();
+            const auto acc = labels.getConstAccessor();
             for (std::size_t i = r.begin(); i != r.end(); ++i) {
                 const Block& b = mesh.blocks[split[i]];
-                chooseInChildren(acc, cells, b.lo, b.level, ringVoxels, b.members, children[i]);
+                chooseInChildren(windowOf(acc, b.lo, b.level, rule), cells, b.lo, b.level, rule, b.members, children[i]);
             }
         });
     for (std::size_t i = 0; i < split.size(); ++i) {
@@ -529,6 +588,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
     st = AdaptiveStats{};
     st.fineCells = cells.size();
     const int top = std::clamp(options.maxLevel, 0, 6);
+    const MergeRule merge{options.ringVoxels, options.layerGapVoxels};
     Mesh mesh{quads, P, {}, {}, {}, {}, {}};
     mesh.vertexOf.resize(cells.size());
     for (std::size_t c = 0; c < cells.size(); ++c) mesh.vertexOf[c] = std::int32_t(c);
@@ -537,7 +597,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
     AdaptiveSurface out;
     if (top > 0) {
         mesh.quadsOfCell = quadsOfCells(quads, cells.size());
-        mesh.blocks = initialBlocks(labels, cells, top, options.ringVoxels);
+        mesh.blocks = initialBlocks(labels, cells, top, merge);
         for (std::size_t b = 0; b < mesh.blocks.size(); ++b) mesh.assign(b);
     }
     progress.checkCancelled();
@@ -565,7 +625,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
             toFine = true;  // no second try for a block at an intersection
         }
         ++st.rounds;
-        splitBlocks(mesh, split, toFine, labels, cells, options.ringVoxels, dirty);
+        splitBlocks(mesh, split, toFine, labels, cells, merge, dirty);
         progress.checkCancelled();
     }
     collectCarried(mesh, cells.size(), out, st);

@@ -9,6 +9,7 @@ BlockSimplifier::BlockSimplifier(State& state, const Block& block, const std::ve
                                  const SimplifyOptions& options)
     : mesh_(state, block, border, options), check_(mesh_) {
     stamp_.assign(mesh_.pos.size(), 0);
+    refused_.resize(mesh_.pos.size());
 }
 
 void BlockSimplifier::run(Progress& progress) {
@@ -21,7 +22,8 @@ void BlockSimplifier::run(Progress& progress) {
         if (++popped % 65536 == 0) progress.checkCancelled();
         if (mesh_.dead[std::size_t(c.u)] || stamp_[std::size_t(c.u)] != c.stamp) continue;
         if (!check_.plan(c.u, c.v, plan_)) {
-            schedule(c.u, true, c.v);  // terminates: unchanged state gives the same verdict
+            refused_[std::size_t(c.u)].push_back(c.v);
+            schedule(c.u, true);  // terminates: each refusal leaves one neighbour fewer to try
             continue;
         }
         mesh_.apply(c.u, c.v, plan_);
@@ -50,30 +52,26 @@ double BlockSimplifier::collapseCost(std::int32_t u, std::int32_t v) const {
            1e-6 * (mesh_.pos[std::size_t(u)] - mesh_.pos[std::size_t(v)]).squaredNorm();
 }
 
-/// Pushes u's cheapest collapse toward a neighbour: lazily the cheapest by cost alone, or when
-/// `full` the cheapest that passes every check, none when no neighbour does. `failed`: the
-/// neighbour whose collapse was just refused (nothing changed since: not checked again). The
-/// full mode runs the whole check, not its cheap tests only: otherwise a collapse the pop then
-/// refuses could be queued again after another refusal (only the last one is skipped), for ever.
-void BlockSimplifier::schedule(std::int32_t u, bool full, std::int32_t failed) {
+/// Pushes u's cheapest collapse toward a neighbour, ranked by cost alone; the pop runs the whole
+/// check. After a refusal, the cheapest neighbour not refused since u's neighbourhood last changed
+/// that passes the cheap tests (the dear ones run once, at the pop: checking them here too had
+/// every collapse that follows a refusal checked twice); none when no neighbour is left.
+void BlockSimplifier::schedule(std::int32_t u, bool afterRefusal) {
     ++stamp_[std::size_t(u)];
+    std::vector<std::int32_t>& refused = refused_[std::size_t(u)];
+    if (!afterRefusal) refused.clear();
     if (mesh_.dead[std::size_t(u)] || mesh_.frozen[std::size_t(u)] || mesh_.vtris[std::size_t(u)].empty()) return;
     cand_.clear();
     mesh_.neighbours(u, cand_);
     costs_.clear();
     for (std::int32_t v : cand_) costs_.emplace_back(collapseCost(u, v), v);
     std::sort(costs_.begin(), costs_.end());
-    if (!full) {
-        // Lazy: rank by cost only; the pop validates, and only a failure pays for checking
-        // every neighbour (most vertices are collapsed toward their cheapest neighbour).
-        heap_.push(Candidate{costs_.front().first, u, costs_.front().second, stamp_[std::size_t(u)]});
+    for (const auto& [cost, v] : costs_) {
+        if (std::find(refused.begin(), refused.end(), v) != refused.end()) continue;
+        if (afterRefusal && !check_.cheapTestsPass(u, v)) continue;
+        heap_.push(Candidate{cost, u, v, stamp_[std::size_t(u)]});
         return;
     }
-    for (const auto& [cost, v] : costs_)
-        if (v != failed && check_.plan(u, v, scratchPlan_)) {
-            heap_.push(Candidate{cost, u, v, stamp_[std::size_t(u)]});
-            return;
-        }
 }
 
 }  // namespace jawmesh::simplify

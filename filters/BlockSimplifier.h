@@ -39,17 +39,20 @@ private:
     };
 
     double collapseCost(std::int32_t u, std::int32_t v) const;
-    void schedule(std::int32_t u, bool full = false, std::int32_t failed = -1);
+    void schedule(std::int32_t u, bool afterRefusal = false);
 
     BlockMesh mesh_;
     CollapseCheck check_;
     std::vector<std::uint32_t> stamp_;  ///< per local vertex: bumped when its candidate is stale
+    /// per local vertex: the neighbours its collapse was refused toward since its neighbourhood
+    /// last changed (not queued again until it does)
+    std::vector<std::vector<std::int32_t>> refused_;
     std::priority_queue<Candidate> heap_;
     std::size_t collapses_ = 0;
     // scratch buffers
     std::vector<std::int32_t> ring_, cand_;
     std::vector<std::pair<double, std::int32_t>> costs_;
-    CollapsePlan plan_, scratchPlan_;
+    CollapsePlan plan_;
 };
 
 }  // namespace jawmesh::simplify

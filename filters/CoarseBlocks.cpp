@@ -1,6 +1,7 @@
 // Implements filters/CoarseBlocks.h; what it computes, its rules and its contract are documented there.
 #include "filters/CoarseBlocks.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace jawmesh {
@@ -166,29 +167,96 @@ bool isBall(const CubeMask& m, char value) {
     return reached == count;
 }
 
+/// The disc tests of the header on a two-valued mask.
+bool maskIsOneDisc(const CubeMask& m) {
+    return edgesCrossedAtMostOnce(m) && cornersFormOneLoop(m) && facesCrossedInOneArc(m) && isBall(m, 0) && isBall(m, 1);
+}
+
+/// The labels of the closed cube [lo, lo + size]^3 (n = size + 1 per side), x fastest; up to
+/// `most` distinct labels in `found` (first seen first); false when there are more.
+bool cubeLabels(const LabelWindow& labels, const Coord& lo, int n, std::size_t most,
+                std::vector<Label>& cube, std::vector<Label>& found) {
+    cube.resize(std::size_t(n * n * n));
+    found.clear();
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const Label l = labels.at(lo.offsetBy(x, y, z));
+                cube[std::size_t((z * n + y) * n + x)] = l;
+                if (std::find(found.begin(), found.end(), l) == found.end()) {
+                    if (found.size() == most) return false;
+                    found.push_back(l);
+                }
+            }
+    return true;
+}
+
+CubeMask maskOf(const std::vector<Label>& cube, int n, Label value) {
+    CubeMask m;
+    m.n = n;
+    m.in.resize(cube.size());
+    for (std::size_t i = 0; i < cube.size(); ++i) m.in[i] = cube[i] == value;
+    return m;
+}
+
+/// Mask m grown by r voxels in every direction (the Chebyshev ball: separable, one axis at a time).
+CubeMask grown(CubeMask m, int r) {
+    const int n = m.n;
+    for (int axis = 0; axis < 3; ++axis) {
+        const int stride = axis == 0 ? 1 : axis == 1 ? n : n * n;
+        std::vector<char> next(m.in.size(), 0);
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    const int i = (z * n + y) * n + x, along = axis == 0 ? x : axis == 1 ? y : z;
+                    if (!m.in[std::size_t(i)]) continue;
+                    for (int d = std::max(-r, -along); d <= std::min(r, n - 1 - along); ++d) next[std::size_t(i + d * stride)] = 1;
+                }
+        m.in = std::move(next);
+    }
+    return m;
+}
+
 }  // namespace
 
-std::optional<std::array<Label, 2>> blockIsOneDisc(const openvdb::Int32Grid::ConstAccessor& labels, const Coord& lo,
+LabelWindow::LabelWindow(const openvdb::Int32Grid::ConstAccessor& labels, const Coord& lo, int n)
+    : labels_(labels), lo_(lo), n_(n), dense_(std::size_t(n * n * n)) {
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) dense_[std::size_t((z * n + y) * n + x)] = labels.getValue(lo.offsetBy(x, y, z));
+}
+
+std::optional<std::array<Label, 2>> blockIsOneDisc(const LabelWindow& labels, const Coord& lo,
                                                    int size, const std::function<bool(Label, Label)>& allowed) {
-    CubeMask m;
-    m.n = size + 1;
-    m.in.resize(std::size_t(m.n * m.n * m.n));
-    const Label a = labels.getValue(lo);
-    Label b = a;
-    for (int z = 0; z < m.n; ++z)
-        for (int y = 0; y < m.n; ++y)
-            for (int x = 0; x < m.n; ++x) {
-                const Label l = labels.getValue(lo.offsetBy(x, y, z));
-                if (l != a) {
-                    if (b == a) b = l;
-                    else if (l != b) return std::nullopt;  // a third label
-                }
-                m.in[std::size_t((z * m.n + y) * m.n + x)] = l == a;
-            }
-    if (b == a || !allowed(std::min(a, b), std::max(a, b))) return std::nullopt;
-    if (!edgesCrossedAtMostOnce(m) || !cornersFormOneLoop(m) || !facesCrossedInOneArc(m)) return std::nullopt;
-    if (!isBall(m, 0) || !isBall(m, 1)) return std::nullopt;
+    const int n = size + 1;
+    std::vector<Label> cube, found;
+    if (!cubeLabels(labels, lo, n, 2, cube, found) || found.size() != 2) return std::nullopt;
+    const Label a = found[0], b = found[1];
+    if (!allowed(std::min(a, b), std::max(a, b)) || !maskIsOneDisc(maskOf(cube, n, a))) return std::nullopt;
     return std::array<Label, 2>{std::min(a, b), std::max(a, b)};
+}
+
+std::optional<BlockLayer> blockIsLayer(const LabelWindow& labels, const Coord& lo, int size,
+                                       int minGapVoxels) {
+    const int n = size + 1;
+    std::vector<Label> cube, found;
+    if (!cubeLabels(labels, lo, n, 3, cube, found) || found.size() != 3) return std::nullopt;
+    std::sort(found.begin(), found.end());
+    const CubeMask masks[3] = {maskOf(cube, n, found[0]), maskOf(cube, n, found[1]), maskOf(cube, n, found[2])};
+    // the outer pair: the two labels with minGapVoxels of the third between them everywhere
+    for (int middle = 0; middle < 3; ++middle) {
+        const int a = (middle + 1) % 3, c = (middle + 2) % 3;
+        const CubeMask near = grown(masks[a], minGapVoxels);
+        bool apart = true;
+        for (std::size_t i = 0; i < cube.size() && apart; ++i) apart = !(near.in[i] && masks[c].in[i]);
+        if (!apart) continue;
+        if (!maskIsOneDisc(masks[a]) || !maskIsOneDisc(masks[c])) return std::nullopt;
+        BlockLayer layer;
+        layer.middle = found[std::size_t(middle)];
+        layer.outer = {std::min(found[std::size_t(a)], found[std::size_t(c)]), std::max(found[std::size_t(a)], found[std::size_t(c)])};
+        return layer;
+    }
+    return std::nullopt;
 }
 
 }  // namespace jawmesh

@@ -52,6 +52,12 @@ bool CollapseCheck::plan(std::int32_t u, std::int32_t v, CollapsePlan& plan) {
     return true;
 }
 
+bool CollapseCheck::cheapTestsPass(std::int32_t u, std::int32_t v) {
+    u_ = u;
+    v_ = v;
+    return cheapTestsPass();
+}
+
 /// Topology, the moved triangles, wedges and the curve error: no distances to the input.
 bool CollapseCheck::cheapTestsPass() {
     const BlockMesh& M = mesh_;

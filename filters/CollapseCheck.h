@@ -17,7 +17,7 @@ namespace jawmesh::simplify {
 /// the removed points within their bound, the new triangles' distance to the input surface, the
 /// intersections) only when those pass. The queue (BlockSimplifier.h) ranks candidates by their
 /// quadric cost, without any of these, and asks for the whole check only for the collapse it is
-/// about to make, or when a refused vertex looks for the cheapest neighbour it may collapse to.
+/// about to make; a refused vertex looks for the cheapest neighbour that passes the cheap tests.
 class CollapseCheck {
 public:
     /// Reads `mesh` and, with exhaustive intersection checks, queries its grid (which drops stale
@@ -27,6 +27,8 @@ public:
     /// True when the collapse u -> v keeps every condition; then `plan` says how to make it
     /// (BlockMesh::apply). On false, `plan` holds nothing of use.
     bool plan(std::int32_t u, std::int32_t v, CollapsePlan& plan);
+    /// True when the collapse u -> v passes the cheap tests (a candidate worth queueing).
+    bool cheapTestsPass(std::int32_t u, std::int32_t v);
 
 private:
     bool cheapTestsPass();

@@ -1,4 +1,5 @@
-// blockIsOneDisc: which voxel cubes one surface-nets vertex may stand for (filters/CoarseBlocks.h).
+// blockIsOneDisc and blockIsLayer: which voxel cubes one surface-nets vertex (or one per sheet) may
+// stand for (filters/CoarseBlocks.h).
 #include "filters/CoarseBlocks.h"
 #include "io/Labels.h"
 
@@ -27,7 +28,8 @@ bool anyPair(Label, Label) { return true; }
 
 std::optional<std::array<Label, 2>> test(const openvdb::Int32Grid::Ptr& grid,
                                           const std::function<bool(Label, Label)>& allowed = anyPair) {
-    return blockIsOneDisc(grid->getConstAccessor(), openvdb::Coord(0, 0, 0), kSize, allowed);
+    const auto acc = grid->getConstAccessor();
+    return blockIsOneDisc(LabelWindow(acc, openvdb::Coord(0, 0, 0), kSize + 1), openvdb::Coord(0, 0, 0), kSize, allowed);
 }
 
 TEST(CoarseBlocks, APlaneThroughTheCubeIsOneDisc) {
@@ -75,6 +77,43 @@ TEST(CoarseBlocks, AFoldThatCrossesAnEdgeTwiceIsNot) {
     // a pdl ridge pushed into the tooth along the whole cube: every edge along y crosses twice
     const auto ridge = cube([](int x, int, int z) { return z < 4 || (x >= 3 && x <= 5) ? kPdl : kTooth; });
     EXPECT_FALSE(test(ridge).has_value());
+}
+
+std::optional<BlockLayer> layer(const openvdb::Int32Grid::Ptr& grid, int minGapVoxels = 2) {
+    const auto acc = grid->getConstAccessor();
+    return blockIsLayer(LabelWindow(acc, openvdb::Coord(0, 0, 0), kSize + 1), openvdb::Coord(0, 0, 0), kSize, minGapVoxels);
+}
+
+TEST(CoarseBlocks, APdlLayerBetweenToothAndBoneIsTwoDiscs) {
+    // a slanted PDL four voxels thick: two sheets, each one disc, never in one dual cell
+    const auto pdl = cube([](int x, int y, int) {
+        const int d = x + y / 3;
+        return d < 3 ? kTooth : d < 7 ? kPdl : kMandibleBoneLabel;
+    });
+    const auto found = layer(pdl);
+    ASSERT_TRUE(found.has_value());
+    EXPECT_EQ(found->middle, kPdl);
+    EXPECT_EQ(found->outer[0], std::min(kTooth, kMandibleBoneLabel));
+    EXPECT_EQ(found->outer[1], std::max(kTooth, kMandibleBoneLabel));
+    EXPECT_FALSE(test(pdl).has_value());  // three labels: no single disc
+    // a wider gap than the layer has is refused
+    EXPECT_FALSE(layer(pdl, 4).has_value());
+}
+
+TEST(CoarseBlocks, AThinOrFoldedLayerIsNot) {
+    // one voxel of PDL: tooth and bone share dual cells
+    EXPECT_FALSE(layer(cube([](int x, int, int) { return x < 4 ? kTooth : x < 5 ? kPdl : kMandibleBoneLabel; })).has_value());
+    // a bone sheet folded back: the bone is two pieces on either side of a tooth slab in the PDL
+    EXPECT_FALSE(layer(cube([](int x, int, int) {
+                     return x < 2 || x > 7 ? kMandibleBoneLabel : x >= 4 && x <= 5 ? kTooth : kPdl;
+                 })).has_value());
+    // a layer whose outer sheet has a tunnel (the bone reaches through a hole in the tooth)
+    EXPECT_FALSE(layer(cube([](int x, int y, int z) {
+                     const bool hole = y >= 3 && y <= 5 && z >= 3 && z <= 5;
+                     return x < 2 && !hole ? kTooth : x < 6 ? kPdl : kMandibleBoneLabel;
+                 })).has_value());
+    // two labels only is not a layer
+    EXPECT_FALSE(layer(cube([](int x, int, int) { return x < 4 ? kTooth : kPdl; })).has_value());
 }
 
 }  // namespace
