@@ -2,6 +2,7 @@
 #include "levelset/CloseHoles.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -16,27 +17,48 @@ struct PatchEdge {
     std::size_t triangle;  ///< the triangle the hole edge belongs to
 };
 
+std::uint64_t edgeKey(std::int32_t a, std::int32_t b) {
+    return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+}
+
+/// The edges used by exactly one triangle, as sorted edgeKeys: the edges are bucketed by their
+/// lower vertex (a counting sort), so a closed surface, which every run has, costs two linear passes.
+std::vector<std::uint64_t> singleUseEdges(const std::vector<Tri>& triangles, std::size_t vertexCount) {
+    std::vector<std::uint32_t> start(vertexCount + 1, 0);
+    for (const Tri& t : triangles)
+        for (int k = 0; k < 3; ++k) ++start[std::size_t(std::min(t[k], t[(k + 1) % 3])) + 1];
+    for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
+    std::vector<std::int32_t> upper(3 * triangles.size());
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (const Tri& t : triangles)
+        for (int k = 0; k < 3; ++k) {
+            const std::int32_t a = t[k], b = t[(k + 1) % 3];
+            upper[next[std::size_t(std::min(a, b))]++] = std::max(a, b);
+        }
+    std::vector<std::uint64_t> single;
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+        const auto first = upper.begin() + start[v], last = upper.begin() + start[v + 1];
+        std::sort(first, last);
+        for (auto i = first; i != last;) {
+            auto j = i + 1;
+            while (j != last && *j == *i) ++j;
+            if (j == i + 1) single.push_back(edgeKey(std::int32_t(v), *i));
+            i = j;
+        }
+    }
+    return single;
+}
+
 /// The patch edges of every edge used by exactly one triangle, sorted by (from, to).
-std::vector<PatchEdge> patchEdges(const std::vector<Tri>& triangles) {
-    struct Use {
-        std::int32_t lo, hi, from, to;
-        std::size_t triangle;
-    };
-    std::vector<Use> uses;
-    uses.reserve(3 * triangles.size());
+std::vector<PatchEdge> patchEdges(const std::vector<Tri>& triangles, std::size_t vertexCount) {
+    const std::vector<std::uint64_t> single = singleUseEdges(triangles, vertexCount);
+    std::vector<PatchEdge> edges;
+    if (single.empty()) return edges;
     for (std::size_t t = 0; t < triangles.size(); ++t)
         for (int k = 0; k < 3; ++k) {
             const std::int32_t a = triangles[t][k], b = triangles[t][(k + 1) % 3];
-            uses.push_back({std::min(a, b), std::max(a, b), a, b, t});
+            if (std::binary_search(single.begin(), single.end(), edgeKey(a, b))) edges.push_back({b, a, t});
         }
-    std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return std::tie(x.lo, x.hi, x.triangle) < std::tie(y.lo, y.hi, y.triangle); });
-    std::vector<PatchEdge> edges;
-    for (std::size_t i = 0; i < uses.size();) {
-        std::size_t j = i + 1;
-        while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
-        if (j == i + 1) edges.push_back({uses[i].to, uses[i].from, uses[i].triangle});
-        i = j;
-    }
     std::sort(edges.begin(), edges.end(), [](const PatchEdge& x, const PatchEdge& y) { return std::tie(x.from, x.to) < std::tie(y.from, y.to); });
     return edges;
 }
@@ -128,7 +150,7 @@ std::vector<Tri> leastAreaPatch(const std::vector<Vec3>& vertices, const std::ve
 
 ClosedHoles closeSmallHoles(OrientedSurface& surface, std::size_t maxLoopVertices) {
     ClosedHoles result;
-    const std::vector<PatchEdge> edges = patchEdges(surface.triangles);
+    const std::vector<PatchEdge> edges = patchEdges(surface.triangles, surface.vertices.size());
     if (edges.empty()) return result;
     for (const Loop& loop : chainLoops(edges, result.leftOpen)) {
         if (loop.vertices.size() < 3) continue;
