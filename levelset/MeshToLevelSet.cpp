@@ -4,6 +4,7 @@
 #include "io/Error.h"
 #include "io/ResourceUsage.h"
 #include "levelset/BandDistance.h"
+#include "levelset/CloseHoles.h"
 #include "levelset/LineWinding.h"
 #include "levelset/OrientSurface.h"
 #include "levelset/ScanlineWinding.h"
@@ -253,9 +254,9 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
     stats.inputTriangles = mesh.triangles.size();
     ProgressStage stage(progress, "levelset");
 
-    // 1. Orientation repair.
+    // 1. Orientation repair, and small holes patched so the distance band runs across them.
     auto t0 = Clock::now();
-    const OrientedSurface oriented = orientSurface(mesh, progress);
+    OrientedSurface oriented = orientSurface(mesh, progress);
     stats.droppedDegenerate = oriented.droppedDegenerate;
     stats.droppedDuplicate = oriented.droppedDuplicate;
     stats.flippedTriangles = oriented.flipped;
@@ -263,6 +264,10 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
     stats.nestedPatches = oriented.nestedPatches;
     stats.secondsOrient = secondsSince(t0);
     if (oriented.triangles.empty()) throw Error("level set: the surface has only degenerate triangles");
+    const ClosedHoles holes = closeSmallHoles(oriented);
+    stats.holesClosed = holes.loops;
+    stats.holePatchTriangles = holes.triangles;
+    stats.holesLeftOpen = holes.leftOpen;
     stage.update(0.1);
 
     // 2. Unsigned narrow band (index-space input).
@@ -312,7 +317,10 @@ nlohmann::json toJson(const MeshToLevelSetStats& stats) {
               {"dropped_duplicate", stats.droppedDuplicate},
               {"flipped_triangles", stats.flippedTriangles},
               {"patches", stats.patches},
-              {"nested_patches", stats.nestedPatches}}},
+              {"nested_patches", stats.nestedPatches},
+              {"holes_closed", stats.holesClosed},
+              {"hole_patch_triangles", stats.holePatchTriangles},
+              {"holes_left_open", stats.holesLeftOpen}}},
             {"sign",
              {{"crossings", stats.crossings},
               {"internal_triangles", stats.internalTriangles},

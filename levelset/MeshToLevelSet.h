@@ -8,7 +8,9 @@
 // Inside = winding >= 1, so overlapping shells give their union and inward-oriented inner
 // shells stay cavities. Triangles that end up with the same sign on both sides (the inner walls
 // of overlapping shells) are then left out of the distance, so the band has no spurious
-// near-zero sheet inside the union.
+// near-zero sheet inside the union. Holes of up to kMaxHoleLoopVertices boundary vertices are
+// patched first (levelset/CloseHoles.h): winding numbers alone close a hole with a sign jump
+// between +-background and no distance band there, which carving cannot read (issue #27).
 #pragma once
 
 #include "io/Progress.h"
@@ -29,6 +31,9 @@ struct MeshToLevelSetStats {
     std::size_t flippedTriangles = 0;    ///< orientation reversed by the repair
     int patches = 0;                     ///< edge-manifold connected patches
     int nestedPatches = 0;               ///< patches inside another (kept by majority orientation)
+    std::size_t holesClosed = 0;         ///< hole loops patched (levelset/CloseHoles.h)
+    std::size_t holePatchTriangles = 0;  ///< triangles those patches added
+    std::size_t holesLeftOpen = 0;       ///< loops too long to patch, chains that do not close
     std::size_t activeVoxels = 0;
     std::size_t crossings = 0;           ///< scanline crossings over the 3 axes
     std::size_t fallbackVoxels = 0;      ///< voxels without a scanline majority (Embree lines asked)
@@ -39,7 +44,8 @@ struct MeshToLevelSetStats {
 };
 
 /// The stats as `jawmesh levelset --json` reports them: input_triangles, active_voxels, repair
-/// {dropped_degenerate, dropped_duplicate, flipped_triangles, patches, nested_patches}, sign
+/// {dropped_degenerate, dropped_duplicate, flipped_triangles, patches, nested_patches,
+/// holes_closed, hole_patch_triangles, holes_left_open}, sign
 /// {crossings, internal_triangles, fallback_voxels, unresolved_voxels} and stage_seconds.
 nlohmann::json toJson(const MeshToLevelSetStats& stats);
 

@@ -42,8 +42,10 @@ inline SurfaceMesh flipHalf(SurfaceMesh m, unsigned seed = 7) {
 }
 
 /// Removes every triangle whose centroid lies within a random radius in [rMin, rMax] (mm) of
-/// `count` random surface points (triangle centroids, fixed seed).
-inline SurfaceMesh punchHoles(const SurfaceMesh& m, int count, double rMin, double rMax, unsigned seed = 11) {
+/// `count` random surface points (triangle centroids, fixed seed); `holes`, when given, receives
+/// each hole's centre and radius.
+inline SurfaceMesh punchHoles(const SurfaceMesh& m, int count, double rMin, double rMax, unsigned seed = 11,
+                              std::vector<std::pair<Vec3, double>>* holesOut = nullptr) {
     std::mt19937 rng(seed);
     std::uniform_int_distribution<std::size_t> pick(0, m.triangles.size() - 1);
     std::uniform_real_distribution<double> radius(rMin, rMax);
@@ -63,6 +65,7 @@ inline SurfaceMesh punchHoles(const SurfaceMesh& m, int count, double rMin, doub
         const bool inHole = std::any_of(holes.begin(), holes.end(), [&](const auto& h) { return (c - h.first).norm() < h.second; });
         if (!inHole) out.triangles.push_back(t);
     }
+    if (holesOut) *holesOut = holes;
     return out;
 }
 
@@ -192,6 +195,24 @@ inline SignCheck checkActiveVoxels(const openvdb::FloatGrid& grid, const std::fu
         if ((s < 0) == (*it < 0.0f)) ++check.agreed;
     }
     return check;
+}
+
+/// Face-neighbour voxel pairs (a voxel of a leaf node and its +x, +y or +z neighbour) whose signs
+/// differ although their distances add up to more than a voxel: the surface passes between them
+/// with no distance band (issue #27), as where winding numbers alone close a hole.
+inline std::size_t bandlessSignJumps(const openvdb::FloatGrid& grid) {
+    const double h = grid.voxelSize()[0];
+    auto acc = grid.getConstAccessor();
+    std::size_t jumps = 0;
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf)
+        for (auto v = leaf->cbeginValueAll(); v; ++v)
+            for (int axis = 0; axis < 3; ++axis) {
+                openvdb::Coord q = v.getCoord();
+                q[axis] += 1;
+                const float a = *v, b = acc.getValue(q);
+                if ((a < 0) != (b < 0) && std::abs(a) + std::abs(b) > 1.01 * h) ++jumps;
+            }
+    return jumps;
 }
 
 }  // namespace jawmesh::test

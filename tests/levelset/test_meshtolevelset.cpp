@@ -79,7 +79,9 @@ TEST_F(MeshToLevelSetTest, HolesAFewVoxelsWide) {
     const auto grid = meshToLevelSet(holey, kVoxel, 3.0, stats);
     const auto check = checkActiveVoxels(*grid, [](const Vec3& p) { return sphereSdf(p, Vec3::Zero(), 1.0); });
     EXPECT_GE(check.fraction(), 0.999) << check.agreed << "/" << check.checked;
-    EXPECT_GT(stats.fallbackVoxels, 0u);  // lines through the holes abstained
+    EXPECT_GT(stats.holesClosed, 0u);  // patched (levelset/CloseHoles.h), not left to the winding numbers
+    EXPECT_EQ(stats.holesLeftOpen, 0u);
+    EXPECT_EQ(test::bandlessSignJumps(*grid), 0u);
     EXPECT_FLOAT_EQ(grid->tree().getValue(openvdb::Coord(0, 0, 0)), -grid->background());
 }
 
@@ -204,7 +206,7 @@ TEST_F(MeshToLevelSetTest, BandDistanceIsExactAgainstBruteForce) {
 }
 
 TEST_F(MeshToLevelSetTest, SameGridWithOneAndTwoThreads) {
-    // The holey, half-flipped sphere exercises every path (repair, scanlines, Embree fallback).
+    // The holey, half-flipped sphere exercises every path (repair, hole patches, scanlines, Embree fallback).
     const SurfaceMesh m = test::flipHalf(test::punchHoles(icosphere(1.0, 5), 6, 0.08, 0.15));
     openvdb::FloatGrid::Ptr a, b;
     {
