@@ -270,7 +270,7 @@ double edgeWedgeDeg(const std::vector<Vec3>& P, std::int32_t a, std::int32_t b, 
         const bool aThenB = ib - 1 == ia % 3;
         wedge.push_back({P[std::size_t(g[std::size_t(3 - (ia - 1) - (ib - 1))])], sides[j][0], sides[j][1], aThenB});
     }
-    return smallestRegionWedgeDeg(P[std::size_t(a)], P[std::size_t(b)], wedge.data(), wedge.size());
+    return smallestRegionWedgeDeg(P[std::size_t(a)], P[std::size_t(b)], wedge.data(), wedge.size(), FanKind::Whole);
 }
 
 /// No triangle at the block's vertex x has an angle under the minimum or an edge longer than its

@@ -45,8 +45,9 @@ bool edgesCrossedAtMostOnce(const CubeMask& m) {
 
 /// Number of 4-connected components of the voxels of value `value` in an n x n face grid.
 int faceComponents(const std::vector<char>& face, int n, char value) {
-    std::vector<char> seen(face.size(), 0);
-    std::vector<int> stack;
+    thread_local std::vector<char> seen;  // scratch: this runs millions of times
+    thread_local std::vector<int> stack;
+    seen.assign(face.size(), 0);
     int components = 0;
     for (int start = 0; start < n * n; ++start) {
         if (face[std::size_t(start)] != value || seen[std::size_t(start)]) continue;
@@ -74,7 +75,8 @@ int faceComponents(const std::vector<char>& face, int n, char value) {
 /// Each face: at most two changes around its border, each label one 4-connected piece.
 bool facesCrossedInOneArc(const CubeMask& m) {
     const int n = m.n, e = n - 1;
-    std::vector<char> face(std::size_t(n * n));
+    thread_local std::vector<char> face, ring;  // scratch
+    face.resize(std::size_t(n * n));
     for (int axis = 0; axis < 3; ++axis)
         for (int side : {0, e}) {
             for (int v = 0; v < n; ++v)
@@ -86,7 +88,7 @@ bool facesCrossedInOneArc(const CubeMask& m) {
                     face[std::size_t(v * n + u)] = m.at(p[0], p[1], p[2]);
                 }
             // the border, walked once around
-            std::vector<char> ring;
+            ring.clear();
             for (int u = 0; u < e; ++u) ring.push_back(face[std::size_t(u)]);
             for (int v = 0; v < e; ++v) ring.push_back(face[std::size_t(v * n + e)]);
             for (int u = e; u > 0; --u) ring.push_back(face[std::size_t(e * n + u)]);
@@ -133,7 +135,9 @@ bool cornersFormOneLoop(const CubeMask& m) {
 bool isBall(const CubeMask& m, char value) {
     const int n = m.n, s = n + 2;
     const int dy = s, dz = s * s;
-    std::vector<char> p(std::size_t(s * s * s), 0);
+    thread_local std::vector<char> p;      // scratch
+    thread_local std::vector<int> stack;
+    p.assign(std::size_t(s * s * s), 0);
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) p[std::size_t((z + 1) * dz + (y + 1) * dy + x + 1)] = m.at(x, y, z) == value;
@@ -151,7 +155,7 @@ bool isBall(const CubeMask& m, char value) {
                 chi += 1 - X - Y - Z + XY + XZ + YZ - (XY & XZ & YZ & at(1 + dy + dz));
             }
     if (first < 0 || chi != 1) return false;
-    std::vector<int> stack{first};
+    stack.assign(1, first);
     p[std::size_t(first)] = 0;  // reached voxels are cleared
     int reached = 0;
     while (!stack.empty()) {
@@ -229,7 +233,7 @@ LabelWindow::LabelWindow(const openvdb::Int32Grid::ConstAccessor& labels, const 
 std::optional<std::array<Label, 2>> blockIsOneDisc(const LabelWindow& labels, const Coord& lo,
                                                    int size, const std::function<bool(Label, Label)>& allowed) {
     const int n = size + 1;
-    std::vector<Label> cube, found;
+    thread_local std::vector<Label> cube, found;  // scratch
     if (!cubeLabels(labels, lo, n, 2, cube, found) || found.size() != 2) return std::nullopt;
     const Label a = found[0], b = found[1];
     if (!allowed(std::min(a, b), std::max(a, b)) || !maskIsOneDisc(maskOf(cube, n, a))) return std::nullopt;
@@ -239,7 +243,7 @@ std::optional<std::array<Label, 2>> blockIsOneDisc(const LabelWindow& labels, co
 std::optional<BlockLayer> blockIsLayer(const LabelWindow& labels, const Coord& lo, int size,
                                        int minGapVoxels) {
     const int n = size + 1;
-    std::vector<Label> cube, found;
+    thread_local std::vector<Label> cube, found;  // scratch
     if (!cubeLabels(labels, lo, n, 3, cube, found) || found.size() != 3) return std::nullopt;
     std::sort(found.begin(), found.end());
     const CubeMask masks[3] = {maskOf(cube, n, found[0]), maskOf(cube, n, found[1]), maskOf(cube, n, found[2])};

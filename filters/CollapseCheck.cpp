@@ -227,7 +227,9 @@ double CollapseCheck::edgeWedge(std::int32_t a, std::int32_t b, std::int32_t hub
         const std::int32_t c = g[std::size_t(3 - ia - ib)];
         wedgeFan_.push_back({M.pos[std::size_t(c)], M.sides[std::size_t(t)][0], M.sides[std::size_t(t)][1], (ia + 1) % 3 == ib});
     }
-    return smallestRegionWedgeDeg(M.pos[std::size_t(a)], M.pos[std::size_t(b)], wedgeFan_.data(), wedgeFan_.size());
+    // a vertex that is not frozen has its whole star in the block, so the edge its whole fan
+    const FanKind kind = M.frozen[std::size_t(a)] && M.frozen[std::size_t(b)] ? FanKind::Partial : FanKind::Whole;
+    return smallestRegionWedgeDeg(M.pos[std::size_t(a)], M.pos[std::size_t(b)], wedgeFan_.data(), wedgeFan_.size(), kind);
 }
 
 /// Curve error: u and the points of u's two curve edges stay near the merged edge v-w.

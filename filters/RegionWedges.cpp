@@ -10,7 +10,7 @@
 
 namespace jawmesh {
 
-double smallestRegionWedgeDeg(const Vec3& a, const Vec3& b, const EdgeFanTriangle* fan, std::size_t n) {
+double smallestRegionWedgeDeg(const Vec3& a, const Vec3& b, const EdgeFanTriangle* fan, std::size_t n, FanKind kind) {
     if (n < 2) return 360;
     const Vec3 d = (b - a).normalized();
     // Angles of the apexes around the edge, in a frame perpendicular to it.
@@ -43,6 +43,7 @@ double smallestRegionWedgeDeg(const Vec3& a, const Vec3& b, const EdgeFanTriangl
     for (std::size_t i = 0; i < n; ++i) {
         const Spoke& s = spokes[i];
         const Spoke& next = spokes[(i + 1) % n];
+        if (s.lead != next.trail && kind == FanKind::Whole) return 0;
         if (s.lead != next.trail || s.lead == kOutsideLabel) continue;
         double gap = next.phi - s.phi;
         if (i + 1 == n) gap += 2 * kPi;
@@ -74,7 +75,7 @@ RegionWedgeStats measureRegionWedges(const InterfaceComplex& complex, double thr
             const auto c = f[(ia + (aThenB ? 2 : 1)) % 3];
             fan.push_back({V[std::size_t(c)], complex.sides[t][0], complex.sides[t][1], aThenB});
         }
-        const double w = smallestRegionWedgeDeg(V[a], V[b], fan.data(), fan.size());
+        const double w = smallestRegionWedgeDeg(V[a], V[b], fan.data(), fan.size(), FanKind::Whole);
         stats.smallestDeg = std::min(stats.smallestDeg, w);
         if (w < thresholdDeg) ++stats.edgesBelow;
     }

@@ -18,10 +18,18 @@ struct EdgeFanTriangle {
     bool aThenB;        ///< the triangle's vertex order runs a -> b (else b -> a)
 };
 
+/// How to read a pair of consecutive triangles whose facing labels disagree.
+enum class FanKind {
+    Partial,  ///< the fan may be seen only in part (e.g. at a block border): the pair is skipped
+    Whole,    ///< every triangle on the edge is there: the surface folds, and the wedge is 0
+};
+
 /// Smallest angle, degrees, spanned between two consecutive triangles around the edge a-b by a region
-/// other than the outside; 360 when there is none. Pairs whose facing labels disagree (a fan seen
-/// only in part, e.g. at a block border) are skipped.
-double smallestRegionWedgeDeg(const Vec3& a, const Vec3& b, const EdgeFanTriangle* fan, std::size_t n);
+/// other than the outside; 360 when there is none. A fold (a whole fan whose labels disagree
+/// somewhere around the edge) is 0: no region can be given to the tets there, and TetGen's mesh
+/// of it fails in the tet stage ("a region boundary is open"; issue #27, the punched mandible).
+double smallestRegionWedgeDeg(const Vec3& a, const Vec3& b, const EdgeFanTriangle* fan, std::size_t n,
+                              FanKind kind = FanKind::Partial);
 
 struct RegionWedgeStats {
     double smallestDeg = 360;  ///< over every edge and region but the outside

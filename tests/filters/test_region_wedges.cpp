@@ -40,6 +40,11 @@ TEST(RegionWedges, OutsideAndInconsistentFansDoNotCount) {
     const EdgeFanTriangle partial[] = {{apexAt(0), 101, 0, true}, {apexAt(5), 201, 1, true}};
     EXPECT_EQ(smallestRegionWedgeDeg(a, b, partial, 2), 360.0);
     EXPECT_EQ(smallestRegionWedgeDeg(a, b, partial, 1), 360.0);
+    // The same labels on a whole fan: the surface folds there, no region fits (the punched
+    // mandible's failure, issue #27)
+    EXPECT_EQ(smallestRegionWedgeDeg(a, b, partial, 2, FanKind::Whole), 0.0);
+    // A consistent whole fan is measured as before
+    EXPECT_NEAR(smallestRegionWedgeDeg(a, b, outsideSliver, 2, FanKind::Whole), 355.0, 1e-9);
 }
 
 TEST(RegionWedges, WholeComplexFindsTheThinEdge) {
