@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Interface extraction + simplification (`jawmesh surface ... --json`, issue #4) on a carved label
-# field, with `jawmesh run`'s PDL edge default (0.8 mm; the command's own default is 0.4). Runs RUNS
+# field, with `jawmesh run`'s defaults (the command's own since session 16). Runs RUNS
 # times (default 3, at least 3 for a median) and prints Markdown: the median extraction,
 # simplification and total seconds, the process's peak resident memory, then the triangles per
 # interface kind, the largest tracked error and the smallest angle of the last run.
@@ -8,7 +8,7 @@
 #   carve-dir: a jaw folder of `jawmesh carve` or of `jawmesh run --write-levelsets` (e.g. the
 #   shared mandible: jawmesh run ../shared/data/openmandible -o out --jaw mandible --write-levelsets,
 #   then out/mandible)
-# Environment: THREADS (default 0 = all), PDL_MAX_EDGE (default 0.8).
+# Environment: THREADS (default 0 = all), PDL_MAX_EDGE (default: the command's, 0.8).
 source "$(dirname "$0")/common.sh"
 carve="${1:?usage: bench/surface.sh <carve-dir> [jawmesh] [runs]}"
 jawmesh="${2:-$here/../build/cli/jawmesh}"
@@ -20,7 +20,7 @@ require_python3
 make_results_file out results
 for run in $(seq 1 "$runs"); do
   "$jawmesh" --quiet --threads "$threads" surface "$carve" -o "$out/run$run" \
-    --pdl-max-edge "${PDL_MAX_EDGE:-0.8}" --json | tail -1 >> "$results"
+    ${PDL_MAX_EDGE:+--pdl-max-edge "$PDL_MAX_EDGE"} --json | tail -1 >> "$results"
   rm -rf "$out/run$run"
 done
 python3 - "$results" "$(nproc)" "$(cut -d' ' -f1-3 /proc/loadavg)" <<'PY'

@@ -3,6 +3,7 @@
 #include "cli/Commands.h"
 #include "cli/NumberChecks.h"
 #include "cli/Pipeline.h"
+#include "cli/RunOptions.h"
 #include "io/AtomicFile.h"
 #include "io/Case.h"
 #include "io/Error.h"
@@ -23,12 +24,14 @@
 namespace jawmesh {
 namespace {
 
+/// Defaults are `jawmesh run`'s (defaultRunOptions): the same case gives the same carve.
 struct CarveCliOptions {
     std::string caseDir;
     std::string output;
     std::string jaw = "mandible";
-    double voxelMm = 0.05;
-    CarveOptions carve;  ///< the options bound to flags; profile and axes are filled in runCarve
+    double voxelMm = defaultRunOptions().voxelSizeMm;
+    double bandVoxels = defaultRunOptions().bandVoxels;
+    CarveOptions carve = defaultRunOptions().carve;  ///< bound to flags; profile and axes are filled in runCarve
     std::vector<double> profile;
     bool json = false;
     bool memoryCheck = true;
@@ -57,7 +60,7 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     }
 
     const auto tLevel = std::chrono::steady_clock::now();
-    const JawLevelSets levelSets = jawLevelSets(surfaces, *jc, opt.voxelMm, 3.0, progress);
+    const JawLevelSets levelSets = jawLevelSets(surfaces, *jc, opt.voxelMm, opt.bandVoxels, progress);
     const double secondsLevelSets = secondsSince(tLevel);
     const auto peakLevelSets = peakResidentMemoryBytes();
 

@@ -1,6 +1,7 @@
 // jawmesh levelset: one surface -> one narrow-band signed distance grid (.vdb).
 #include "cli/Commands.h"
 #include "cli/NumberChecks.h"
+#include "cli/RunOptions.h"
 #include "io/AtomicFile.h"
 #include "io/Error.h"
 #include "io/MeshIO.h"
@@ -21,7 +22,7 @@ struct LevelsetOptions {
     std::string input;
     std::string output;
     double voxelMm = 0.0;
-    double bandVoxels = 3.0;
+    double bandVoxels = defaultRunOptions().bandVoxels;  ///< `jawmesh run`'s
     bool json = false;
 };
 

@@ -2,6 +2,7 @@
 // markers = label pairs and one seed per region component), one .ply per region, summary JSON.
 #include "cli/Commands.h"
 #include "cli/NumberChecks.h"
+#include "cli/RunOptions.h"
 #include "filters/ExtractInterfaces.h"
 #include "filters/SimplifyInterfaces.h"
 #include "io/AtomicFile.h"
@@ -21,10 +22,12 @@
 namespace jawmesh {
 namespace {
 
+/// Defaults are `jawmesh run`'s (defaultRunOptions): the same carve gives the same surface.
 struct SurfaceCliOptions {
     std::string carveDir;
     std::string output;
-    SimplifyOptions simplify;
+    SimplifyOptions simplify = defaultRunOptions().simplify;
+    ExtractOptions extract = defaultRunOptions().extract;
     bool simplifyOn = true;
     bool json = false;
 };
@@ -42,7 +45,7 @@ void runSurface(const SurfaceCliOptions& opt, const GlobalOptions& global) {
 
     const auto tExtract = std::chrono::steady_clock::now();
     const double cpuStart = processCpuSeconds();
-    ExtractOptions extract;
+    ExtractOptions extract = opt.extract;
     extract.findSeeds = !opt.simplifyOn;  // simplification places them on its output
     extract.adaptive = matchedTo(opt.simplify, extract.adaptive);
     ExtractStats extractStats;

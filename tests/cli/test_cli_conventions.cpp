@@ -1,6 +1,7 @@
 // The command-line conventions the README promises (issue #25): global options before or after the
 // subcommand, usage errors as one line and exit code 2, defaults in --help, a bash completion
 // script generated from the parser, machine-readable output alone on stdout.
+#include "cli/RunOptions.h"
 #include "support/TestData.h"
 #include "support_CliRun.h"
 
@@ -88,6 +89,9 @@ TEST(CliConventions, HelpShowsDefaultsAndUnits) {
     EXPECT_NE(run.output.find("--voxel FLOAT:POSITIVE=0.05"), std::string::npos) << run.output;
     const CliResult surface = runJawmesh("surface --help", dir / "surface.log");
     EXPECT_NE(surface.output.find("--min-angle FLOAT:FLOAT in [0 - 59]=15"), std::string::npos) << surface.output;
+    // one source of defaults: `surface` makes from a carve the surface that `run` makes (issue #22)
+    EXPECT_NE(surface.output.find("--pdl-max-edge FLOAT:POSITIVE=0.8"), std::string::npos) << surface.output;
+    EXPECT_EQ(defaultRunOptions().simplify.pdlMaxEdgeMm, 0.8);
 }
 
 TEST(CliConventions, BashCompletionCompletesCommandsAndOptions) {
