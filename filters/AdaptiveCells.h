@@ -6,7 +6,9 @@
 // one whose labels show a single disc of one interface, with no other sheet or label within
 // ringVoxels of it (so thin plates and junction curves stay fine), becomes one vertex: the fine
 // vertex of the block nearest the mean of its fine vertices, so every output vertex still lies on the
-// fine interface. The quads of the fine surface then join the blocks' vertices (DualQuads.h): a
+// fine interface. A block that two parallel sheets cross (a layer such as the PDL, CoarseBlocks.h)
+// becomes one vertex per sheet, each standing for the cells of its sheet and certified on its own.
+// The quads of the fine surface then join the blocks' vertices (DualQuads.h): a
 // vertex identification on a conforming mesh, so the result is conforming (no cracks between block
 // sizes), and the disc test keeps it a manifold of the same topology.
 //
