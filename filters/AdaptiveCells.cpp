@@ -64,7 +64,9 @@ std::vector<Sheet> blockSheets(const LabelWindow& labels, const Coord& lo, int l
     }
     if (layerGapVoxels <= 0) return {};
     const auto layer = blockIsLayer(labels, voxelLo.offsetBy(-ring), size + 2 * ring, layerGapVoxels);
-    if (!layer) return {};
+    // the PDL only: its thickness is the carve's own; any other layer (a bone lip between the PDL
+    // and the outside) may be a plate barely over the gap, whose tets two coarse sheets flatten
+    if (!layer || layer->middle == kOutsideLabel || labelKind(layer->middle) != LabelKind::Pdl) return {};
     const auto sheetOf = [&](Label outer) {
         return Sheet{{std::min(outer, layer->middle), std::max(outer, layer->middle)}, outer};
     };
