@@ -3,6 +3,7 @@
 #pragma once
 
 #include "io/SurfaceMesh.h"
+#include "levelset/LeastAreaLoop.h"  // minimumAreaLoop, the third triangulation of a loop
 
 #include <functional>
 #include <vector>
@@ -16,13 +17,6 @@ namespace jawmesh {
 /// triangles index the loop (0..n-1). Empty when it gets stuck (a loop that is far from planar,
 /// or folds over itself in projection). Cost: O(n^3) for n loop vertices.
 std::vector<Tri> earClipLoop(const std::vector<Vec3>& loop, const std::function<bool(int, int)>& diagonalAllowed);
-
-/// The triangulation of the loop (no added vertex) of least total area, by dynamic programming
-/// over its sub-polygons (Barequet & Sharir; Liepa's hole filling): for loops that are not flat,
-/// such as a staircase of missing tile faces, where a projection folds. Diagonals that
-/// `diagonalAllowed` vetoes are never used. Empty when every triangulation uses a vetoed diagonal.
-/// Cost: O(n^3) time, O(n^2) memory.
-std::vector<Tri> minimumAreaLoop(const std::vector<Vec3>& loop, const std::function<bool(int, int)>& diagonalAllowed);
 
 /// The fan from an added vertex (index n, the loop's centroid) to every loop edge, wound as the loop.
 std::vector<Tri> centroidFan(std::size_t n);

@@ -1,9 +1,10 @@
 // Implements levelset/CloseHoles.h; what it computes, its rules and its contract are documented there.
 #include "levelset/CloseHoles.h"
 
+#include "levelset/LeastAreaLoop.h"
+
 #include <algorithm>
 #include <cstdint>
-#include <limits>
 #include <map>
 #include <tuple>
 
@@ -113,35 +114,16 @@ std::vector<Loop> chainLoops(const std::vector<PatchEdge>& edges, std::size_t& o
     return loops;
 }
 
-double triangleArea(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
-
-/// The least-area triangulation of the loop over its own vertices (dynamic programming over its
-/// sub-polygons), wound as the loop runs; zero-area triangles left out.
+/// The least-area triangulation of the loop over its own vertices (LeastAreaLoop.h), wound as the
+/// loop runs, in surface vertex ids; zero-area triangles left out.
 std::vector<Tri> leastAreaPatch(const std::vector<Vec3>& vertices, const std::vector<std::int32_t>& loop) {
-    const std::size_t n = loop.size();
-    const auto p = [&](std::size_t i) -> const Vec3& { return vertices[std::size_t(loop[i])]; };
-    std::vector<double> cost(n * n, 0.0);
-    std::vector<std::size_t> split(n * n, 0);
-    for (std::size_t len = 2; len < n; ++len)
-        for (std::size_t i = 0; i + len < n; ++i) {
-            const std::size_t j = i + len;
-            double best = std::numeric_limits<double>::infinity();
-            for (std::size_t k = i + 1; k < j; ++k) {
-                const double c = cost[i * n + k] + cost[k * n + j] + triangleArea(p(i), p(k), p(j));
-                if (c < best) best = c, split[i * n + j] = k;
-            }
-            cost[i * n + j] = best;
-        }
+    std::vector<Vec3> corners;
+    for (std::int32_t v : loop) corners.push_back(vertices[std::size_t(v)]);
     std::vector<Tri> patch;
-    std::vector<std::pair<std::size_t, std::size_t>> todo{{0, n - 1}};
-    while (!todo.empty()) {
-        const auto [i, j] = todo.back();
-        todo.pop_back();
-        if (j < i + 2) continue;
-        const std::size_t k = split[i * n + j];
-        if ((p(k) - p(i)).cross(p(j) - p(i)).squaredNorm() > 0.0) patch.push_back({loop[i], loop[k], loop[j]});
-        todo.push_back({i, k});
-        todo.push_back({k, j});
+    for (const Tri& t : minimumAreaLoop(corners, [](int, int) { return true; })) {
+        const Vec3& a = corners[std::size_t(t[0])];
+        if ((corners[std::size_t(t[1])] - a).cross(corners[std::size_t(t[2])] - a).squaredNorm() > 0.0)
+            patch.push_back({loop[std::size_t(t[0])], loop[std::size_t(t[1])], loop[std::size_t(t[2])]});
     }
     return patch;
 }
