@@ -13,8 +13,10 @@ cd "$(dirname "$0")"
 
 PACKAGES=(cmake make g++ pkg-config
   libopenvdb-dev libboost-iostreams-dev libboost-system-dev libtbb-dev libembree-dev libtet1.5-dev
-  libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev python3-meshio
-  calculix-ccx zlib1g-dev chromium)
+  libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev zlib1g-dev)
+# Only for the tests: meshio reads our volume files back, CalculiX solves the decks, Chromium renders
+# the report. The demo needs none of them (Chromium alone is most of the download).
+TEST_PACKAGES=(python3-meshio calculix-ccx chromium)
 # Only for `slurm-test`: a real single-node Slurm on localhost.
 SLURM_PACKAGES=(slurmctld slurmd slurm-client munge python3)
 # Only for `robustness`: clang with its libFuzzer runtime, and the symbolizer for readable reports.
@@ -65,7 +67,7 @@ case "${1:-}" in
     echo "Outputs in out/demo"
     ;;
   test)
-    install_packages
+    install_packages "${TEST_PACKAGES[@]}"
     build
     ctest --test-dir build -L quick --output-on-failure -j "$(nproc)"
     ctest --test-dir build -L slow --output-on-failure -j "$(nproc)"
@@ -74,7 +76,7 @@ case "${1:-}" in
     # The whole pipeline on the shared mandible (about 3 minutes on 2 cores), then the tests that check a
     # finished run (tests/cli/slow_run_mandible.cpp, SlowEval, the interface surface
     # against the run's label field); not part of CI's time.
-    install_packages
+    install_packages "${TEST_PACKAGES[@]}"
     build
     [ -d ../shared/data/openmandible ] || { echo "no ../shared/data/openmandible" >&2; exit 1; }
     rm -rf build/mandible-run
@@ -83,12 +85,12 @@ case "${1:-}" in
       ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun|SlowInterfaces' --output-on-failure
     ;;
   slurm-test)
-    install_packages "${SLURM_PACKAGES[@]}"
+    install_packages "${TEST_PACKAGES[@]}" "${SLURM_PACKAGES[@]}"
     build
     bash tests/slurm/slurm_batch_test.sh build/cli/jawmesh
     ;;
   robustness)
-    install_packages "${ROBUSTNESS_PACKAGES[@]}"
+    install_packages "${TEST_PACKAGES[@]}" "${ROBUSTNESS_PACKAGES[@]}"
     sanitize_build
     ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --test-dir build-asan -L quick -E "$SANITIZE_EXCLUDE" --output-on-failure -j "$(nproc)"
