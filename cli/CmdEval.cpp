@@ -94,6 +94,10 @@ void addEvalCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("--crown-tolerance", opt->eval.crownToleranceMm, "Allowed crown Hausdorff distance, mm")
         ->check(positiveNumber())
         ->capture_default_str();
+    cmd->add_option("--cervical-band", opt->eval.cervicalBandMm,
+                    "Crown faces this near the root form the cervical band, measured apart from the crown, mm")
+        ->check(nonNegativeNumber())
+        ->capture_default_str();
     cmd->add_option("--min-dihedral", opt->eval.minDihedralDeg, "Quality check: smallest acceptable dihedral angle, degrees")
         ->capture_default_str();
     cmd->add_flag("--json", opt->json, "Also print report.json to stdout");

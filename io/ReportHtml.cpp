@@ -138,9 +138,9 @@ std::string distanceTable(const Json& report) {
                     row({"domain", "part", "Hausdorff mm (two-sided)", "mean mm (two-sided)", "output&rarr;input max", "output&rarr;input mean",
                          "output&rarr;input p95", "input&rarr;output max", "input&rarr;output mean", "area mm&sup2; (output)"},
                         true);
-    for (const char* name : {"crowns", "roots", "bone_outer", "bone_socket"}) {
+    for (const char* name : {"crowns", "cervical_bands", "roots", "bone_outer", "bone_socket"}) {
         const Json& s = d["summary"][name];
-        if (s["domains"].get<int>() == 0) continue;
+        if (!s.is_object() || s["domains"].get<int>() == 0) continue;
         t += "<tr class=\"summary\"><td>all " + std::string(name) + "</td><td></td><td>" + cell(s["hausdorff_mm"]) + "</td><td>" +
              cell(s["mean_mm"], 4) + "</td><td colspan=\"6\"></td></tr>\n";
     }
@@ -217,7 +217,8 @@ std::string reportHtml(const Json& report, const std::vector<ReportPicture>& pic
     h << "<h2>Regions</h2>\n" << regionsTable(report);
     if (!report["distance"].is_null()) {
         h << "<h2>Distance to the input surfaces</h2>\n<p>Crown: tooth faces against the outside; root: against PDL or bone "
-             "(the crest is where they meet). Area samples every "
+             "(the crest is where they meet); cervical: the crown faces within "
+          << cell(report["options"].value("cervical_band_mm", 0.0)) << " mm of the root, where the root's erosion begins. Area samples every "
           << cell(report["options"]["sample_spacing_mm"]) << " mm; maxima exact to " << cell(report["options"]["hausdorff_tolerance_mm"], 4)
           << " mm.</p>\n"
           << distanceTable(report);

@@ -11,6 +11,8 @@
 #include "tet/RegionSurfaces.h"
 #include "tet/ValidateTetMesh.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -125,23 +127,23 @@ Json qualityJson(const TetMesh& mesh, const std::vector<TetShape>& shapes, const
 
 // ---- distances to the input --------------------------------------------------------------------
 
-/// Two-sided distances between an output surface split into two parts (group 0/1 per triangle)
+/// Two-sided distances between an output surface split into parts (outputPart[t] indexes `names`)
 /// and its input surface; the input's triangles take the part of their nearest output face.
 Json twoSidedDistances(const SurfaceMesh& output, const std::vector<int>& outputPart, const SurfaceMesh& input,
-                       const char* part0, const char* part1, const EvalOptions& o, Progress& progress) {
+                       const std::vector<const char*>& names, const EvalOptions& o, Progress& progress) {
+    const int parts = static_cast<int>(names.size());
     const TriangleBvh outBvh = buildTriangleBvh(output), inBvh = buildTriangleBvh(input);
     const DistanceSamples outSamples = sampleDistances(output, inBvh, o.sampleSpacingMm, progress);
-    const auto outSummary = summarizeDistances(output, outSamples, outputPart, 2, inBvh, o.hausdorffToleranceMm, progress);
+    const auto outSummary = summarizeDistances(output, outSamples, outputPart, parts, inBvh, o.hausdorffToleranceMm, progress);
     const DistanceSamples inSamples = sampleDistances(input, outBvh, o.sampleSpacingMm, progress);
     std::vector<int> inputPart(input.triangles.size());
     for (std::size_t t = 0; t < inputPart.size(); ++t)
         inputPart[t] = outputPart[static_cast<std::size_t>(inSamples.closestTriangle[static_cast<std::size_t>(inSamples.firstOfTriangle[t])])];
-    const auto inSummary = summarizeDistances(input, inSamples, inputPart, 2, outBvh, o.hausdorffToleranceMm, progress);
+    const auto inSummary = summarizeDistances(input, inSamples, inputPart, parts, outBvh, o.hausdorffToleranceMm, progress);
 
     Json j;
     double wholeMax = 0, wholeMeanArea = 0, wholeArea = 0;
-    const char* names[2] = {part0, part1};
-    for (std::size_t g = 0; g < 2; ++g) {
+    for (std::size_t g = 0; g < names.size(); ++g) {
         const DistanceSummary& a = outSummary[g];
         const DistanceSummary& b = inSummary[g];
         Json p;
@@ -179,6 +181,28 @@ Json aggregateParts(const Json& domains, const std::string& kind, const std::str
 
 bool againstPdlOrBone(Label other) {
     return other != kOutsideLabel && (labelKind(other) == LabelKind::Pdl || labelKind(other) == LabelKind::Bone);
+}
+
+/// Part of each face of a tooth's boundary: 1 root (against its PDL or the bone), 2 the cervical
+/// band (any corner within bandMm of a root face), 0 the rest of the crown.
+std::vector<int> toothParts(const RegionBoundary& b, double bandMm) {
+    std::vector<int> part(b.otherSide.size());
+    for (std::size_t t = 0; t < part.size(); ++t) part[t] = againstPdlOrBone(b.otherSide[t]) ? 1 : 0;
+    const SurfaceMesh root = selectTriangles(b.surface, [&](std::size_t t) { return part[t] == 1; });
+    if (root.triangles.empty() || bandMm <= 0) return part;
+    const TriangleBvh rootBvh = buildTriangleBvh(root);
+    const double band2 = bandMm * bandMm;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, part.size(), 4096), [&](const auto& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            if (part[t] != 0) continue;
+            for (std::int32_t v : b.surface.triangles[t])
+                if (closestTriangle(rootBvh, b.surface.vertices[static_cast<std::size_t>(v)]).squaredDistanceMm2 <= band2) {
+                    part[t] = 2;
+                    break;
+                }
+        }
+    });
+    return part;
 }
 
 /// A wrong --input (another patient, another jaw, metres) would make every nearest-triangle query
@@ -228,8 +252,8 @@ Json verdict(const Json& report, const EvalOptions& o) {
         const Json& crowns = report["distance"]["summary"]["crowns"];
         if (crowns["domains"].get<int>() > 0) {
             const double h = crowns["hausdorff_mm"].get<double>();
-            std::snprintf(buf, sizeof buf, "crown Hausdorff %.3f mm (limit %.3f), mean %.4f mm", h, o.crownToleranceMm,
-                          crowns["mean_mm"].get<double>());
+            std::snprintf(buf, sizeof buf, "crown Hausdorff %.3f mm (limit %.3f; above the %.2f mm cervical band), mean %.4f mm",
+                          h, o.crownToleranceMm, o.cervicalBandMm, crowns["mean_mm"].get<double>());
             add("crown shape", h <= o.crownToleranceMm ? "pass" : "warn", buf);
         }
     }
@@ -355,11 +379,6 @@ Json pdlThicknessReport(const std::map<Label, RegionBoundary>& boundaries, const
 Json distanceReport(const JawSurfaces& input, const std::map<Label, RegionBoundary>& boundaries, const EvalOptions& o,
                     Progress& progress) {
     Json domains = Json::array();
-    const auto partsOf = [&](const RegionBoundary& b) {
-        std::vector<int> part(b.otherSide.size());
-        for (std::size_t t = 0; t < part.size(); ++t) part[t] = againstPdlOrBone(b.otherSide[t]) ? 1 : 0;  // root : crown
-        return part;
-    };
     for (const auto& [label, boundary] : boundaries) {
         progress.checkCancelled();
         const LabelKind kind = labelKind(label);
@@ -367,19 +386,21 @@ Json distanceReport(const JawSurfaces& input, const std::map<Label, RegionBounda
             const auto in = input.teeth.find(labelUnn(label));
             if (in == input.teeth.end() || in->second.triangles.empty()) continue;
             Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "tooth"}};
-            d["parts"] = twoSidedDistances(boundary.surface, partsOf(boundary), in->second, "crown", "root", o, progress);
+            d["parts"] = twoSidedDistances(boundary.surface, toothParts(boundary, o.cervicalBandMm), in->second,
+                                           {"crown", "root", "cervical"}, o, progress);
             domains.push_back(d);
         } else if (kind == LabelKind::Bone && !input.bone.triangles.empty()) {
             std::vector<int> part(boundary.otherSide.size());
             for (std::size_t t = 0; t < part.size(); ++t) part[t] = boundary.otherSide[t] == kOutsideLabel ? 0 : 1;
             Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "bone"}};
-            d["parts"] = twoSidedDistances(boundary.surface, part, input.bone, "outer", "socket", o, progress);
+            d["parts"] = twoSidedDistances(boundary.surface, part, input.bone, {"outer", "socket"}, o, progress);
             domains.push_back(d);
         }
     }
     Json distance;
     distance["domains"] = domains;
     distance["summary"] = {{"crowns", aggregateParts(domains, "tooth", "crown")},
+                           {"cervical_bands", aggregateParts(domains, "tooth", "cervical")},
                            {"roots", aggregateParts(domains, "tooth", "root")},
                            {"bone_outer", aggregateParts(domains, "bone", "outer")},
                            {"bone_socket", aggregateParts(domains, "bone", "socket")}};
@@ -394,7 +415,8 @@ nlohmann::json evaluateMesh(const TetMesh& mesh, const JawSurfaces* input, const
     report["schema"] = "jawmesh-eval/1";
     report["options"] = {{"sample_spacing_mm", o.sampleSpacingMm}, {"hausdorff_tolerance_mm", o.hausdorffToleranceMm},
                          {"pdl_target_mm", o.pdlTargetMm},        {"pdl_tolerance_mm", o.pdlToleranceMm},
-                         {"crown_tolerance_mm", o.crownToleranceMm}, {"min_dihedral_deg", o.minDihedralDeg}};
+                         {"crown_tolerance_mm", o.crownToleranceMm}, {"cervical_band_mm", o.cervicalBandMm},
+                         {"min_dihedral_deg", o.minDihedralDeg}};
     report["mesh"] = {{"nodes", mesh.nodes.size()}, {"tets", mesh.tets.size()}};
 
     std::vector<int> inputTeeth;

@@ -8,8 +8,11 @@
 // Crown and root (the alveolar crest): a tooth's output surface is split by what lies across each
 // face. Faces against its PDL or the bone are root; faces against the outside (or another tooth)
 // are crown; the crest is the curve where the two meet, i.e. where the tooth surface meets bone or
-// PDL. An input tooth triangle takes the part of the output tooth face nearest to it (at its first
-// area sample). The bone is split the same way: "outer" faces the outside, "socket" faces a PDL
+// PDL. Crown faces with a corner within cervicalBandMm of a root face are the cervical band, a part
+// of its own: there the carve's root erosion begins (the root is pulled in by the PDL's inner
+// share, about 0.1 mm, and a smooth cap joins it to the kept crown), so the crown's own figure is
+// the crown above the band. An input tooth triangle takes the part of the output tooth face nearest
+// to it (at its first area sample). The bone is split the same way: "outer" faces the outside, "socket" faces a PDL
 // or a tooth.
 #pragma once
 
@@ -26,7 +29,8 @@ struct EvalOptions {
     double hausdorffToleranceMm = 0.002; ///< maxima exact to this (well below the 0.05 mm voxel)
     double pdlTargetMm = 0.2;            ///< the PDL check: p05 and p95 within target +- tolerance
     double pdlToleranceMm = 0.03;
-    double crownToleranceMm = 0.1;       ///< the crown check: two-sided crown Hausdorff at most this
+    double crownToleranceMm = 0.05;      ///< the crown check: two-sided crown Hausdorff at most this
+    double cervicalBandMm = 0.5;         ///< crown faces this near the root faces: the cervical band
     double minDihedralDeg = 10.0;        ///< the quality check
     int histogramBins = 40;
 };

@@ -117,7 +117,9 @@ protected:
     static void SetUpTestSuite() {
         mesh_ = new TetMesh(syntheticJawMesh());
         input_ = new JawSurfaces(syntheticJawInput());
-        report_ = new nlohmann::json(evaluateMesh(*mesh_, input_));
+        EvalOptions o;
+        o.cervicalBandMm = 0;  // crown and root split by the crest alone; the band has its own test
+        report_ = new nlohmann::json(evaluateMesh(*mesh_, input_, o));
     }
     static void TearDownTestSuite() {
         delete mesh_;
@@ -205,6 +207,40 @@ TEST_F(EvaluateSyntheticJaw, ToothDistancesMatchBruteForceAndConstruction) {
     EXPECT_NEAR(crowns["hausdorff_mm"].get<double>(), 0.05 * std::sqrt(3.0), 0.002);
 }
 
+// The cervical band: crown faces with a corner within the band of a root face are a part of their
+// own, so the crown's figures are those of the faces above it (brute force over the root faces).
+TEST_F(EvaluateSyntheticJaw, CervicalBandIsTheCrownNearTheRoot) {
+    EvalOptions o;
+    o.cervicalBandMm = 0.75;
+    const nlohmann::json r = evaluateMesh(*mesh_, input_, o);
+    for (int unn : {24, 25}) {
+        const auto faces = boundaryFaces(*mesh_, toothLabel(unn));
+        std::vector<Triangle> root;
+        for (const auto& f : faces)
+            if (isRoot(f.second)) root.push_back(f.first);
+        double areaOf[3] = {0, 0, 0};  // crown, root, band
+        for (const auto& [tri, other] : faces) {
+            int part = isRoot(other) ? 1 : 0;
+            if (part == 0)
+                for (const Vec3& corner : tri)
+                    if (bruteNearest(corner, root).distance <= o.cervicalBandMm) part = 2;
+            areaOf[part] += 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).norm();
+        }
+        ASSERT_GT(areaOf[0], 0.0);
+        ASSERT_GT(areaOf[2], 0.0);
+        nlohmann::json parts;
+        for (const auto& d : r["distance"]["domains"])
+            if (d["name"] == "tooth_" + std::to_string(unn)) parts = d["parts"];
+        ASSERT_FALSE(parts.is_null());
+        const char* names[3] = {"crown", "root", "cervical"};
+        for (int g = 0; g < 3; ++g)
+            EXPECT_NEAR(parts[names[g]]["output_to_input"]["area_mm2"].get<double>(), areaOf[g], 1e-9 * (1 + areaOf[g]))
+                << "tooth " << unn << " " << names[g];
+        // Every crown point is 0.05 mm inside the input, in the band or above it.
+        EXPECT_NEAR(parts["crown"]["output_to_input"]["mean"].get<double>(), 0.05, 1e-9);
+    }
+}
+
 TEST_F(EvaluateSyntheticJaw, BoneDistancesMatchBruteForce) {
     const auto faces = boundaryFaces(*mesh_, kMandibleBoneLabel);
     std::vector<Triangle> output;
@@ -271,7 +307,7 @@ TEST_F(EvaluateSyntheticJaw, SameReportForAnyThreadCount) {
         tbb::global_control only(tbb::global_control::max_allowed_parallelism, 1);
         one = evaluateMesh(*mesh_, input_);
     }
-    nlohmann::json many = *report_;
+    nlohmann::json many = evaluateMesh(*mesh_, input_);  // default options: the cervical band too
     one.erase("seconds");
     many.erase("seconds");
     EXPECT_EQ(one.dump(), many.dump());
