@@ -1,6 +1,7 @@
 // Implements fe/ToothAxesFromShape.h; what it computes, its rules and its contract are documented there.
 #include "fe/ToothAxesFromShape.h"
 
+#include "fe/MesialDistalCues.h"
 #include "filters/RayTriangle.h"
 #include "io/Error.h"
 
@@ -138,6 +139,40 @@ ToothAxes frameAndCrownCentre(const SurfaceMesh& mesh, const Shape& s, const Vec
     return a;
 }
 
+/// UNN of molars in both jaws (1-3, 14-19, 30-32).
+bool isMolar(int unn) { return unn <= 3 || (unn >= 14 && unn <= 19) || unn >= 30; }
+
+/// UNN runs along the arch through the midline (1-16 in the maxilla, 17-32 in the mandible): on the
+/// first half of each jaw increasing UNN is mesial, so distal is against it.
+bool unnIncreasesMesially(int unn, Jaw jaw) { return unn < (jaw == Jaw::Maxilla ? 8.5 : 24.5); }
+
+/// A lone tooth has no arch: the cross-section's wider principal direction stands in for it.
+Vec3 loneToothDirection(const SurfaceMesh& mesh, const Shape& s) {
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Vec3& v : mesh.vertices) cov += (v - s.centroid) * (v - s.centroid).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    return eig.eigenvectors().col(1);
+}
+
+/// Arch tangents at the teeth in UNN order (pointing toward increasing UNN), through the crown
+/// centres of their anatomical axes; empty for a single tooth.
+std::vector<Vec3> archTangentsOf(const std::map<int, SurfaceMesh>& teeth, const std::map<int, Shape>& shapes,
+                                 const Vec3& occlusalNormal, double sense, double crownFraction) {
+    std::vector<Vec3> centres;
+    for (const auto& [unn, s] : shapes) {
+        const SurfaceMesh& mesh = teeth.at(unn);
+        const Vec3 occlusal = sense * s.longAxis;
+        double top = -std::numeric_limits<double>::infinity(), bottom = -top;
+        for (const Vec3& v : mesh.vertices) {
+            const double h = (v - s.centroid).dot(occlusal);
+            top = std::max(top, h), bottom = std::min(bottom, h);
+        }
+        const Vec3 cut = s.centroid + (top - crownFraction * (top - bottom)) * occlusal;
+        centres.push_back(clippedCentroid(mesh, cut, occlusal, s.orientation));
+    }
+    return archTangents(centres, occlusalNormal);
+}
+
 }  // namespace
 
 double angleDeg(const Vec3& a, const Vec3& b) {
@@ -186,38 +221,34 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
     Vec3 archCentre = Vec3::Zero();
     for (const auto& [unn, s] : shapes) archCentre += s.centroid;
     archCentre /= static_cast<double>(shapes.size());
-    const double midline = jaw == Jaw::Maxilla ? 8.5 : 24.5;
+    const std::vector<Vec3> tangents = archTangentsOf(teeth, shapes, sense * common, sense, o.crownFraction);
 
     std::map<int, ToothAxes> axes;
-    for (auto it = shapes.begin(); it != shapes.end(); ++it) {
+    std::size_t index = 0;
+    for (auto it = shapes.begin(); it != shapes.end(); ++it, ++index) {
         const int unn = it->first;
         const Shape& s = it->second;
         const SurfaceMesh& mesh = teeth.at(unn);
-        // Arch tangent from the neighbours in UNN order (UNN runs along the arch in both jaws).
-        const Vec3 prev = it == shapes.begin() ? s.centroid : std::prev(it)->second.centroid;
-        const Vec3 next = std::next(it) == shapes.end() ? s.centroid : std::next(it)->second.centroid;
-        Vec3 along = next - prev;
-        if (along.norm() < 1e-9) {
-            // A lone tooth: the cross-section's wider principal direction stands in for the arch.
-            Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-            for (const Vec3& v : mesh.vertices) cov += (v - s.centroid) * (v - s.centroid).transpose();
-            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-            along = eig.eigenvectors().col(1);
-            if (notes) notes->push_back("tooth " + std::to_string(unn) + ": no neighbours, mesial-distal and labial senses guessed");
-        }
-        const Vec3 distal = unn < midline ? Vec3(-along) : along;  // away from the midline
+        Vec3 along = tangents.empty() ? loneToothDirection(mesh, s) : tangents[index];
+        if (tangents.empty() && notes) notes->push_back("tooth " + std::to_string(unn) + ": no neighbours, mesial-distal and labial senses guessed");
+        MesialDistalChoice choice;
         auto frameFor = [&](const Vec3& occlusal) {
+            Vec3 labial = occlusal.cross(along).normalized();
+            if (labial.dot(s.centroid - archCentre) < 0) labial = -labial;
+            choice = chooseMesialDistal(mesh, occlusal, along, labial, isMolar(unn));
+            const Vec3 distal = unnIncreasesMesially(unn, jaw) ? Vec3(-choice.direction) : choice.direction;
             return frameAndCrownCentre(mesh, s, occlusal, distal, archCentre, o.crownFraction);
         };
+        const double faceRadiusMm = isMolar(unn) ? o.molarLabialFaceRadiusMm : o.labialFaceRadiusMm;
         const Vec3 anatomical = sense * s.longAxis;
         ToothAxes a = frameFor(anatomical);
         // Clinical crown axis: the anatomical axis in the plane of the labial face. The labial face
         // is found from the crown centre, which moves with the axis: two passes settle it.
-        for (int pass = 0; pass < 2 && o.labialFaceRadiusMm > 0; ++pass) {
+        for (int pass = 0; pass < 2 && faceRadiusMm > 0; ++pass) {
             Vec3 normal;
             // A face tilted more than 30 degrees from the anatomical axis is not a side of the
             // tooth (an incisal edge or an occlusal table the ray happened to leave through).
-            if (!labialFaceNormal(mesh, s.orientation, a.crownCentre, a.labial, o.labialFaceRadiusMm, normal) ||
+            if (!labialFaceNormal(mesh, s.orientation, a.crownCentre, a.labial, faceRadiusMm, normal) ||
                 std::abs(normal.dot(anatomical)) > 0.5) {
                 if (notes) notes->push_back("tooth " + std::to_string(unn) + ": no labial crown face found, long axis = anatomical axis");
                 a = frameFor(anatomical);
@@ -226,6 +257,9 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
             a = frameFor((anatomical - anatomical.dot(normal) * normal).normalized());
         }
         axes[unn] = a;
+        if (notes)
+            notes->push_back("tooth " + std::to_string(unn) + ": mesial-distal axis from the " + choice.cue + " (" +
+                             std::to_string(static_cast<int>(std::lround(choice.offArchDeg))) + " deg from the arch tangent)");
     }
     if (notes && fromBone) notes->push_back("tooth axes: occlusal side from the bone around the roots");
     return axes;

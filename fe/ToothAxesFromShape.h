@@ -1,8 +1,10 @@
 // Tooth axes computed from the tooth shapes when a case has no axes file (docs/DESIGN.md).
 //  - Anatomical axis: the principal axis of largest spread of the tooth volume, oriented toward the
 //    occlusal side (one sense for the whole jaw, by a vote of the teeth).
-//  - Mesial-distal axis: follows the arch (neighbours in UNN order), points distally; the labial
-//    axis completes the frame, pointing away from the inside of the arch.
+//  - Mesial-distal axis: from the crown's own shape where it shows one, else the arch curve
+//    (fe/MesialDistalCues.h: crown outline, buccal cusps of molars, arch tangent), points
+//    distally; the labial axis completes the frame, pointing away from the inside of the arch.
+//    Which cue each tooth used, and how far it turned from the arch, goes to `notes`.
 //  - Crown centre: volume centroid of the crown part (the occlusal end of the tooth).
 //  - Long (occlusal) axis: the clinical crown axis (Andrews' FACC): the anatomical axis turned into
 //    the plane of the labial face, where the labial axis from the crown centre leaves the crown. A
@@ -30,6 +32,10 @@ struct AxesFromShapeOptions {
     /// cusp slopes above it (on patient 26, 1.5 mm: worst long axis 16 degrees off; 3-4 mm: 7-10).
     /// 0 keeps the anatomical axis as the long axis.
     double labialFaceRadiusMm = 3.5;
+    /// The same for molars, whose buccal face is about 10 mm wide (incisors to premolars 6.5-8.5):
+    /// on patient 26's molars 2.5-3.5 mm left the third molar's long axis 10 degrees off, 4.5-5
+    /// mm brought every molar within 7.3.
+    double molarLabialFaceRadiusMm = 4.5;
 };
 
 /// Axes of every tooth of one jaw, in the ToothAxes convention (x distal, y labial, z occlusal).

@@ -19,10 +19,11 @@
 namespace jawmesh {
 namespace {
 
-/// The issue's bounds, on every tooth: long axis within 10 degrees, labial axis within 20. Measured
-/// (clinical crown axis, see fe/ToothAxesFromShape.h): long median 5.1, worst 7.0 (tooth 14);
-/// labial worst 17.7 (tooth 10, a lateral incisor rotated against the arch). The volume's
-/// principal axis alone was 15.8 off on canine 11.
+/// Issue #26's bounds, on every tooth: long axis within 8 degrees, labial axis within 12. Measured
+/// (clinical crown axis, mesial-distal from the crown's cues or the arch, fe/MesialDistalCues.h):
+/// long median 5.2, worst 7.3 (tooth 1, a third molar); labial worst 9.5 (tooth 11). With the
+/// neighbour chord as mesial-distal axis the labial axis was 17.7 off on tooth 10, a lateral
+/// incisor rotated against the arch.
 void expectAxesAgree(const JawSurfaces& jaw, const std::map<int, ToothAxes>& computed) {
     ASSERT_EQ(computed.size(), jaw.teeth.size());
     std::vector<double> longs;
@@ -37,9 +38,9 @@ void expectAxesAgree(const JawSurfaces& jaw, const std::map<int, ToothAxes>& com
         const double centreMm = (c.crownCentre - given.crownCentre).norm();
         std::cout << "tooth " << unn << ": long " << longDeg << " deg, labial " << labialDeg << " deg, distal "
                   << distalDeg << " deg, crown centre " << centreMm << " mm apart\n";
-        EXPECT_LT(longDeg, 10.0);
-        EXPECT_LT(labialDeg, 20.0);
-        EXPECT_LT(distalDeg, 20.0);
+        EXPECT_LT(longDeg, 8.0);
+        EXPECT_LT(labialDeg, 12.0);
+        EXPECT_LT(distalDeg, 12.0);
         EXPECT_LT(centreMm, 2.0);
         longs.push_back(longDeg);
         worstLabial = std::max(worstLabial, labialDeg);
@@ -70,7 +71,9 @@ TEST(ToothAxesFromShape, AgreesWithTheProvidedAxesOfRealMaxillaryTeeth) {
 
 /// Teeth without provided axes (the OpenMandible mandible, another person): the computed axes must
 /// be anatomically plausible. Long axes point to the occlusal side (+z: crowns above the roots in
-/// this scan) and within 25 degrees of each neighbour's; the labial axis points out of the arch
+/// this scan) and within 30 degrees of each neighbour's (lower molars lean lingually against the
+/// premolars, the curve of Wilson: first molar 19 against premolar 20 measures 25.0; the wrong axis
+/// of a held-out mandible's last molar was 44 off); the labial axis points out of the arch
 /// (away from the tongue side, where the arch's centroid lies) and the crown centre lies on the
 /// crown side of the tooth's volume centroid.
 TEST(ToothAxesFromShape, PlausibleOnTheRealMandibleWithoutProvidedAxes) {
@@ -91,7 +94,7 @@ TEST(ToothAxesFromShape, PlausibleOnTheRealMandibleWithoutProvidedAxes) {
         if (std::next(it) != axes.end()) {
             const double toNext = angleDeg(a.occlusal, std::next(it)->second.occlusal);
             std::cout << "tooth " << unn << ": long axis " << a.occlusal.transpose() << ", " << toNext << " deg to the next\n";
-            EXPECT_LT(toNext, 25.0);
+            EXPECT_LT(toNext, 30.0);
         }
         Vec3 outward = a.crownCentre - archCentre;
         outward -= outward.dot(a.occlusal) * a.occlusal;

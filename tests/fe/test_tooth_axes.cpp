@@ -42,7 +42,7 @@ TEST(ToothAxesFromShape, RecoversThePhantomAxesInBothJaws) {
             o.trianglesScale = 0.3;
             const PhantomJaw phantom = makePhantom(o);
             AxesFromShapeOptions anatomical;
-            anatomical.labialFaceRadiusMm = 0;
+            anatomical.labialFaceRadiusMm = anatomical.molarLabialFaceRadiusMm = 0;
             for (const SurfaceMesh& bone : {SurfaceMesh(), phantom.bone}) {
                 const Worst a = worstAgainstConstruction(phantom, anatomical, bone);
                 const Worst c = worstAgainstConstruction(phantom, AxesFromShapeOptions(), bone);
