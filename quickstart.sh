@@ -13,7 +13,7 @@ cd "$(dirname "$0")"
 
 PACKAGES=(cmake make g++ pkg-config
   libopenvdb-dev libboost-iostreams-dev libboost-system-dev libtbb-dev libembree-dev libtet1.5-dev
-  libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev zlib1g-dev)
+  libeigen3-dev libcli11-dev nlohmann-json3-dev libgtest-dev zlib1g-dev libteem-dev libnifti2-dev)
 # Only for the tests: meshio reads our volume files back, CalculiX solves the decks, Chromium renders
 # the report. The demo needs none of them (session 17: it ran on a machine without them).
 TEST_PACKAGES=(python3-meshio calculix-ccx chromium)

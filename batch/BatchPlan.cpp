@@ -6,6 +6,7 @@
 #include "batch/OutputStamp.h"
 #include "io/Case.h"
 #include "io/Error.h"
+#include "levelset/JawInput.h"
 
 #include <algorithm>
 
@@ -17,7 +18,7 @@ std::uint64_t estimateTaskMemory(const DatasetTask& task, double voxelMm) {
     try {
         for (const JawCase& jawCase : discoverCase(task.caseDir).jaws) {
             if (jawName(jawCase.jaw) != task.jaw) continue;
-            return estimateJawMemoryBytes(loadJaw(jawCase), voxelMm);
+            return estimateJawMemoryBytes(loadJawInput(jawCase), voxelMm);
         }
     } catch (const Error&) {
     }

@@ -8,6 +8,7 @@
 // Usage: bench_carve_shift <levelsets folder> <case>/input/<jaw>
 #include "io/Case.h"
 #include "io/Error.h"
+#include "levelset/JawInput.h"
 #include "levelset/LabelFieldIO.h"
 
 #include <openvdb/tools/Interpolation.h>
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
         const Jaw jaw = jawFromName(jawDir.filename().string());
         JawSurfaces input;
         for (const JawCase& jc : info.jaws)
-            if (jc.jaw == jaw) input = loadJaw(jc);
+            if (jc.jaw == jaw) input = loadJawInput(jc);
         const LabelField field = readLabelField(argv[1]);
         std::printf("| region | vertices | largest shift mm | at (x, y, z) | share > 0.15 / 0.2 mm | band mm |\n"
                     "|---|---|---|---|---|---|\n");

@@ -10,6 +10,7 @@
 #include "io/Case.h"
 #include "io/Error.h"
 #include "io/MeshIO.h"
+#include "levelset/JawInput.h"
 
 #include <chrono>
 #include <cstdio>
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
         const Jaw jaw = jawFromName(jawDir.filename().string());
         JawSurfaces input;
         for (const JawCase& jc : info.jaws)
-            if (jc.jaw == jaw) input = loadJaw(jc);
+            if (jc.jaw == jaw) input = loadJawInput(jc);
         const auto clock = [] { return std::chrono::steady_clock::now(); };
         double total = 0;
         std::size_t outTris = 0, inTris = 0;

@@ -5,6 +5,7 @@
 #include "io/Case.h"
 #include "io/Error.h"
 #include "io/ToothAxes.h"
+#include "levelset/JawInput.h"
 
 #include <nlohmann/json.hpp>
 
@@ -29,7 +30,7 @@ void runAxes(const AxesCliOptions& opt, const GlobalOptions& global) {
     nlohmann::json sources = nlohmann::json::object();
     for (const JawCase& jc : info.jaws) {
         if (!opt.jaw.empty() && jawName(jc.jaw) != opt.jaw) continue;
-        const JawSurfaces surfaces = loadJaw(jc, LoadOptions(), terminalProgress(global));
+        const JawSurfaces surfaces = loadJawInput(jc, LoadOptions(), terminalProgress(global));
         std::vector<std::string> notes;
         const bool fromCase = !surfaces.axes.empty() && !opt.computed;
         const std::map<int, ToothAxes> axes =

@@ -10,6 +10,7 @@
 #include "io/ResourceUsage.h"
 #include "io/StagedFolder.h"
 #include "levelset/CarveGaps.h"
+#include "levelset/JawInput.h"
 #include "levelset/JawLevelSets.h"
 #include "levelset/LabelFieldIO.h"
 #include "levelset/MeshToLevelSet.h"
@@ -46,9 +47,9 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     for (const auto& j : info.jaws)
         if (j.jaw == jaw) jc = &j;
     if (!jc) throw Error(opt.caseDir, "case has no " + opt.jaw);
-    const JawSurfaces surfaces = loadJaw(*jc, LoadOptions(), progress);
+    const JawSurfaces surfaces = loadJawInput(*jc, LoadOptions(), progress);
     requireMemoryFits(surfaces, opt.voxelMm, opt.memoryCheck ? availableMemoryBytes() : 0,
-                      std::filesystem::path(jc->bonePath).parent_path().parent_path().string());
+                      jc->folder);
     const double secondsLoad = secondsSince(start);
     const auto peakLoad = peakResidentMemoryBytes();
 

@@ -7,6 +7,7 @@
 #include "io/PngWriter.h"
 #include "io/ReportHtml.h"
 #include "io/ResourceUsage.h"
+#include "levelset/JawInput.h"
 
 #include <tbb/parallel_for.h>
 
@@ -93,7 +94,8 @@ JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& l
     const fs::path p = fs::path(path).lexically_normal();
     const fs::path folder = p.filename().empty() ? p.parent_path() : p;
     fs::path caseRoot = folder;
-    if (fs::is_directory(folder / "bone") || fs::is_directory(folder / "teeth")) {  // <case>/input/<jaw>
+    const bool labelVolume = fs::is_directory(folder) && !labelVolumeIn(folder.string()).empty();
+    if (fs::is_directory(folder / "bone") || fs::is_directory(folder / "teeth") || labelVolume) {  // <case>/input/<jaw>
         jaw = jawFromName(folder.filename().string());
         caseRoot = folder.parent_path().parent_path();
         if (caseRoot.empty()) caseRoot = ".";
@@ -102,7 +104,7 @@ JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& l
     }
     const CaseInfo info = discoverCase(caseRoot.string());
     for (const JawCase& jc : info.jaws)
-        if (jc.jaw == jaw) return loadJaw(jc, load, progress);
+        if (jc.jaw == jaw) return loadJawInput(jc, load, progress);
     throw Error(path, "the case has no " + jawName(jaw) + " input");
 }
 
@@ -110,8 +112,8 @@ namespace {
 /// "<case folder> <jaw>": the end-of-run report names its input, not the folder it is written to
 /// (a batch writes into a temporary folder and renames it, so outputs must not depend on it).
 std::string caseTitle(const JawCase& jawCase) {
-    const fs::path bone = fs::absolute(jawCase.bonePath).lexically_normal();  // <case>/input/<jaw>/bone/<file>
-    return bone.parent_path().parent_path().parent_path().parent_path().filename().string() + " " + jawName(jawCase.jaw);
+    const fs::path folder = fs::absolute(jawCase.folder).lexically_normal();  // <case>/input/<jaw>
+    return folder.parent_path().parent_path().filename().string() + " " + jawName(jawCase.jaw);
 }
 }  // namespace
 
@@ -119,7 +121,7 @@ nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const Load
                          const std::string& outJawDir, Progress& progress) {
     const auto start = std::chrono::steady_clock::now();
     try {
-        const JawSurfaces input = loadJaw(jawCase, load, progress);
+        const JawSurfaces input = loadJawInput(jawCase, load, progress);
         EvalOptions options;
         options.pdlTargetMm = pdlTargetMm;
         const nlohmann::json report =

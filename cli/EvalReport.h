@@ -23,7 +23,7 @@ nlohmann::json writeEvalReport(const TetMesh& mesh, const JawSurfaces* input, co
 
 /// The input surfaces of a jaw for evaluation, from either a jaw folder (<case>/input/<jaw>) or a
 /// case folder (<case>; then `jaw` picks the jaw). Throws Error naming the folder when it is
-/// neither or lacks that jaw, and whatever loadJaw() throws.
+/// neither or lacks that jaw, and whatever loadJawInput() throws.
 JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& load = {}, Progress& progress = noProgress());
 
 /// End-of-run report: loads the jaw's input again (the run freed it), writes <outJawDir>/report/

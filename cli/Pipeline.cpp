@@ -13,6 +13,7 @@
 #include "io/AtomicFile.h"
 #include "io/StagedFolder.h"
 #include "io/VtuWriter.h"
+#include "levelset/JawInput.h"
 #include "levelset/JawLevelSets.h"
 #include "levelset/LabelFieldIO.h"
 #include "tet/ElementQuality.h"
@@ -93,9 +94,9 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         field = log.run(jaw + ": read label field", progress, [&] { return readLabelField(options.fromVdb); });
     } else {
         JawSurfaces surfaces =
-            log.run(jaw + ": read", progress, [&] { return loadJaw(jawCase, options.load, progress); });
+            log.run(jaw + ": read", progress, [&] { return loadJawInput(jawCase, options.load, progress); });
         requireMemoryFits(surfaces, options.voxelSizeMm, options.memoryLimitBytes,
-                          std::filesystem::path(jawCase.bonePath).parent_path().parent_path().string());
+                          jawCase.folder);
         caseAxes = surfaces.axes;
         record["input"] = {{"bone_triangles", surfaces.bone.triangles.size()}, {"teeth", surfaces.teeth.size()}};
         for (const std::string& note : surfaces.notes) record["notes"].push_back(note);

@@ -1,5 +1,6 @@
 // Implements io/Case.h; what it computes, its rules and its contract are documented there.
 #include "io/Case.h"
+#include "io/LabelVolume.h"
 
 #include "io/Error.h"
 #include "io/MeshIO.h"
@@ -46,10 +47,44 @@ std::string stemOf(const fs::path& p) { return p.stem().string(); }
 
 bool isAllTeethObj(const fs::path& p) { return isFile(p) && lower(p.filename().string()) == "all_teeth.obj"; }
 
-JawCase discoverJaw(const fs::path& jawDir, Jaw jaw) {
+}  // namespace
+
+std::string labelVolumeIn(const std::string& jawDir) {
+    std::vector<std::string> found;
+    for (const fs::path& p : sortedEntries(jawDir)) {
+        const std::string file = lower(p.filename().string());
+        if (isFile(p) && file.compare(0, 7, "labels.") == 0 && isLabelVolumePath(file)) found.push_back(p.string());
+    }
+    if (found.size() > 1) throw Error(jawDir, "several label volumes (" + found[0] + ", " + found[1] + "); keep one");
+    return found.empty() ? "" : found[0];
+}
+
+namespace {
+
+/// A jaw given as a label volume: it may hold labels.json and an axes file, no surfaces.
+JawCase discoverLabelJaw(const fs::path& jawDir, Jaw jaw, const std::string& volume) {
     const std::string name = jawName(jaw);
+    for (const fs::path& surfaces : {jawDir / "bone", jawDir / "teeth", jawDir / "all_teeth.obj"})
+        if (fs::exists(surfaces))
+            throw Error(jawDir.string(), "both a label volume (" + volume + ") and surfaces (" + surfaces.string() +
+                                             ") are given; keep one");
     JawCase jc;
     jc.jaw = jaw;
+    jc.folder = jawDir.string();
+    jc.labelVolumePath = volume;
+    if (isFile(jawDir / "labels.json")) jc.labelsJsonPath = (jawDir / "labels.json").string();
+    const fs::path axes = jawDir / ("teeth_axes_" + name + ".json");
+    if (isFile(axes)) jc.axesPath = axes.string();
+    return jc;
+}
+
+JawCase discoverJaw(const fs::path& jawDir, Jaw jaw) {
+    const std::string name = jawName(jaw);
+    const std::string volume = labelVolumeIn(jawDir.string());
+    if (!volume.empty()) return discoverLabelJaw(jawDir, jaw, volume);
+    JawCase jc;
+    jc.jaw = jaw;
+    jc.folder = jawDir.string();
 
     const fs::path boneDir = jawDir / "bone";
     std::vector<std::string> bones;
@@ -123,6 +158,8 @@ CaseInfo discoverCase(const std::string& caseDir) {
 // ---------------------------------------------------------------------------------------------
 
 JawSurfaces loadJaw(const JawCase& jc, const LoadOptions& options, Progress& progress) {
+    if (!jc.labelVolumePath.empty())
+        throw Error(jc.labelVolumePath, "a label volume is read by loadJawInput (levelset/JawInput.h), not as surfaces");
     if (!(options.scale >= 0) || !std::isfinite(options.scale))
         throw Error(jc.bonePath, "scale must be a positive number (or 0 for automatic), not " + std::to_string(options.scale));
     JawSurfaces out;
@@ -202,7 +239,8 @@ JawSurfaces loadJaw(const JawCase& jc, const LoadOptions& options, Progress& pro
 std::string toothSource(const JawCase& jawCase, int unn) {
     const auto file = jawCase.toothPaths.find(unn);
     if (file != jawCase.toothPaths.end()) return file->second;
-    return jawCase.allTeethPath + " (tooth " + std::to_string(unn) + ")";
+    const std::string& source = jawCase.labelVolumePath.empty() ? jawCase.allTeethPath : jawCase.labelVolumePath;
+    return source + " (tooth " + std::to_string(unn) + ")";
 }
 
 }  // namespace jawmesh

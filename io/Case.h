@@ -4,6 +4,9 @@
 //   <case>/input/<jaw>/teeth/all_teeth.obj            alternative: every tooth as a connected component
 //                                                     (also accepted directly in <case>/input/<jaw>/)
 //   <case>/input/<jaw>/teeth_axes_<jaw>.json          optional tooth axes
+//   <case>/input/<jaw>/labels.<nrrd|nhdr|seg.nrrd|nii|nii.gz>   alternative to bone/ and teeth/: a
+//   <case>/input/<jaw>/labels.json                    label volume, with its optional label names
+//                                                     (io/LabelRoles.h); read by loadJawInput
 // discoverCase() only looks at names; loadJaw() reads the surfaces, checks the units and numbers
 // the teeth of an all_teeth.obj along the arch.
 #pragma once
@@ -23,11 +26,14 @@ namespace jawmesh {
 /// The files of one jaw of a case.
 struct JawCase {
     Jaw jaw = Jaw::Mandible;
+    std::string folder;                    ///< <case>/input/<jaw>
     std::string bonePath;                  ///< input/<jaw>/bone/<jaw>.<ext>
     std::map<int, std::string> toothPaths; ///< UNN -> tooth file; empty when teethFromAllTeethObj
     std::string axesPath;                  ///< teeth_axes_<jaw>.json, empty when absent
     bool teethFromAllTeethObj = false;     ///< teeth come from one all_teeth.obj (numbered at load)
     std::string allTeethPath;              ///< that all_teeth.obj, empty otherwise
+    std::string labelVolumePath;           ///< input/<jaw>/labels.<ext> when the jaw is a label volume
+    std::string labelsJsonPath;            ///< its input/<jaw>/labels.json, empty when absent
 };
 
 /// Every jaw found in a case folder (mandible first).
@@ -39,10 +45,15 @@ struct CaseInfo {
 /// Finds the jaws of a case folder by file names only (no file is read).
 /// Throws Error(path, reason) when: the folder is missing, it has no input/ folder, input/ has no
 /// mandible/ or maxilla/ folder, a jaw has no bone file or several (mandible.stl and mandible.obj),
-/// a jaw has no teeth, a tooth file name is not tooth_<UNN>.<ext>, a UNN is outside 1..32 or belongs
+/// a jaw has no teeth (unless it is a label volume; several label volumes, or one beside
+/// surfaces, are refused), a tooth file name is not tooth_<UNN>.<ext>, a UNN is outside 1..32 or belongs
 /// to the other jaw, a UNN appears twice (tooth_24.stl and tooth_24.obj), or a jaw has both
 /// tooth_<UNN> files and an all_teeth.obj. Cost: a few directory listings.
 CaseInfo discoverCase(const std::string& caseDir);
+
+/// The label volume of a jaw folder (<case>/input/<jaw>/labels.nrrd, .nhdr, .seg.nrrd, .nii or
+/// .nii.gz), empty when there is none. Throws Error when there are several.
+std::string labelVolumeIn(const std::string& jawDir);
 
 struct LoadOptions {
     /// 0: automatic (coordinates must already be millimetres; a bounding-box diagonal below 1 or

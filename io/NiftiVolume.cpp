@@ -1,0 +1,96 @@
+// NIfTI-1 and NIfTI-2 label volumes through nifti2 (io/LabelVolumeFormats.h).
+#include "io/Error.h"
+#include "io/LabelVolumeFormats.h"
+
+#include <nifti2_io.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+namespace jawmesh {
+namespace {
+
+using NiftiPtr = std::unique_ptr<nifti_image, void (*)(nifti_image*)>;
+
+VoxelType voxelTypeOf(int datatype) {
+    switch (datatype) {
+        case DT_INT8: return VoxelType::Int8;
+        case DT_UINT8: return VoxelType::UInt8;
+        case DT_INT16: return VoxelType::Int16;
+        case DT_UINT16: return VoxelType::UInt16;
+        case DT_INT32: return VoxelType::Int32;
+        case DT_UINT32: return VoxelType::UInt32;
+        default: return VoxelType::Other;
+    }
+}
+
+/// Voxel to world: the sform when set, else the qform, else the spacings (pixdim) alone.
+void readGeometry(const nifti_image& nim, LabelVolume& v) {
+    const nifti_dmat44* m = nim.sform_code > 0 ? &nim.sto_xyz : nim.qform_code > 0 ? &nim.qto_xyz : nullptr;
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) v.directionsMm(r, c) = m ? m->m[r][c] : (r == c ? std::abs(nim.pixdim[c + 1]) : 0.0);
+        v.originMm[r] = m ? m->m[r][3] : 0.0;
+    }
+    if (!m)
+        for (int a = 0; a < 3; ++a)
+            if (!(v.directionsMm(a, a) > 0)) v.directionsMm(a, a) = 1.0;
+}
+
+}  // namespace
+
+LabelVolume readNiftiVolume(const std::string& path) {
+    nifti_set_debug_level(0);  // our message names the file; the library's would go to stderr
+    NiftiPtr nim(nifti_image_read(path.c_str(), 1), nifti_image_free);
+    if (!nim || !nim->data) throw Error(path, "cannot read as NIfTI (not a NIfTI-1/2 file, or its data is truncated)");
+    LabelVolume v;
+    v.path = path;
+    const int64_t ndim = nim->dim[0];
+    for (int64_t d = 4; d <= ndim && d < 8; ++d)
+        if (nim->dim[d] > 1) throw Error(path, "a " + std::to_string(ndim) + "D volume (label maps are 3D)");
+    if (ndim < 3 || nim->nz < 2) throw Error(path, "a 2D image (label maps are 3D)");
+    v.size = {static_cast<int>(nim->nx), static_cast<int>(nim->ny), static_cast<int>(nim->nz)};
+    if (nim->xyz_units == NIFTI_UNITS_METER) throw Error(path, "lengths in metres (multiply by 1000): write the volume in mm");
+    if (nim->xyz_units != 0 && nim->xyz_units != NIFTI_UNITS_MM)
+        throw Error(path, "lengths are not millimetres (NIfTI xyz_units " + std::to_string(nim->xyz_units) + ")");
+    if (nim->scl_slope != 0 && (nim->scl_slope != 1 || nim->scl_inter != 0))
+        throw Error(path, "values are scaled (scl_slope/scl_inter): labels must be stored as they are");
+    readGeometry(*nim, v);
+    if (!convertValues(nim->data, voxelTypeOf(nim->datatype), v.voxels(), v.values))
+        throw Error(path, std::string("values of type ") + nifti_datatype_string(nim->datatype) +
+                              ": labels must be integers of 8-32 bits");
+    return v;
+}
+
+void writeNiftiVolume(const LabelVolume& v, const std::string& path) {
+    if (v.layers != 1) throw Error(path, "NIfTI holds one layer; write a layered segmentation as .seg.nrrd");
+    bool fits16 = true;
+    for (std::int32_t x : v.values) fits16 = fits16 && x >= 0 && x <= 65535;
+    const int64_t dims[8] = {3, v.size[0], v.size[1], v.size[2], 1, 1, 1, 1};
+    NiftiPtr nim(nifti_make_new_nim(dims, fits16 ? DT_UINT16 : DT_INT32, 1), nifti_image_free);
+    if (!nim) throw Error(path, "cannot make a NIfTI image");
+    if (fits16) {
+        auto* out = static_cast<std::uint16_t*>(nim->data);
+        for (std::size_t i = 0; i < v.values.size(); ++i) out[i] = static_cast<std::uint16_t>(v.values[i]);
+    } else {
+        std::memcpy(nim->data, v.values.data(), v.values.size() * sizeof(std::int32_t));
+    }
+    nim->sform_code = NIFTI_XFORM_SCANNER_ANAT;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c)
+            nim->sto_xyz.m[r][c] = r == 3 ? (c == 3 ? 1.0 : 0.0) : c == 3 ? v.originMm[r] : v.directionsMm(r, c);
+    nim->sto_ijk = nifti_dmat44_inverse(nim->sto_xyz);
+    for (int a = 0; a < 3; ++a) nim->pixdim[a + 1] = v.directionsMm.col(a).norm();
+    nim->dx = nim->pixdim[1], nim->dy = nim->pixdim[2], nim->dz = nim->pixdim[3];
+    nim->xyz_units = NIFTI_UNITS_MM;
+    nim->nifti_type = NIFTI_FTYPE_NIFTI1_1;
+    nifti_set_debug_level(0);
+    if (nifti_set_filenames(nim.get(), path.c_str(), 0, 1)) throw Error(path, "not a NIfTI file name (.nii, .nii.gz)");
+    nifti_image_write(nim.get());
+    // nifti_image_write reports nothing: read the header back to know the file is there and whole.
+    NiftiPtr back(nifti_image_read(path.c_str(), 0), nifti_image_free);
+    if (!back || back->nx != v.size[0] || back->ny != v.size[1] || back->nz != v.size[2])
+        throw Error(path, "cannot write NIfTI");
+}
+
+}  // namespace jawmesh

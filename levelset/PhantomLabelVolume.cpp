@@ -1,0 +1,92 @@
+// Implements levelset/PhantomLabelVolume.h; what it computes, its rules and its contract are documented there.
+#include "levelset/PhantomLabelVolume.h"
+
+#include "io/AtomicFile.h"
+#include "io/Error.h"
+#include "io/Labels.h"
+#include "levelset/PhantomAnatomy.h"
+
+#include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace jawmesh {
+namespace {
+
+/// The label at a template-frame point: the first tooth whose field is negative, else bone, PDL
+/// or outside.
+std::int32_t labelAt(const phantom::JawAnatomy& an, const Vec3& p, double pdlMm) {
+    const bool inBody = an.boneBox.min.x() <= p.x() && p.x() <= an.boneBox.max.x() && an.boneBox.min.y() <= p.y() &&
+                        p.y() <= an.boneBox.max.y() && an.boneBox.min.z() <= p.z() && p.z() <= an.boneBox.max.z();
+    int nearTooth = 0;
+    for (const phantom::ToothSpec& t : an.teeth) {
+        if ((p.array() < t.box.min.array() - pdlMm).any() || (p.array() > t.box.max.array() + pdlMm).any()) continue;
+        const double f = phantom::toothField(t, p);
+        if (f < 0) return toothLabel(t.unn);
+        if (pdlMm > 0 && f < pdlMm && nearTooth == 0) nearTooth = t.unn;
+    }
+    if (!inBody || phantom::boneField(an, p) >= 0) return kOutsideLabel;
+    if (nearTooth) return pdlLabel(nearTooth);
+    return an.jaw == Jaw::Mandible ? kMandibleBoneLabel : kMaxillaBoneLabel;
+}
+
+}  // namespace
+
+LabelVolume phantomLabelVolume(const PhantomOptions& phantom, const PhantomLabelOptions& o, std::map<int, ToothAxes>* axes) {
+    if (!(o.voxelMm > 0 && o.voxelMm <= 2)) throw Error("phantom label volume: voxel size must be in (0, 2] mm");
+    const phantom::JawAnatomy an = phantom::buildJawAnatomy(phantom.jaw, phantom.teeth, phantom.seed);
+    BBox box = phantom::toWorld(an, an.boneBox);
+    for (const phantom::ToothSpec& t : an.teeth) {
+        const BBox b = phantom::toWorld(an, t.box);
+        box.min = box.min.cwiseMin(b.min), box.max = box.max.cwiseMax(b.max);
+    }
+    LabelVolume v;
+    v.path = "phantom label volume";
+    for (int a = 0; a < 3; ++a)
+        v.size[static_cast<std::size_t>(a)] = static_cast<int>(std::ceil((box.max[a] - box.min[a]) / o.voxelMm)) + 3;
+    v.directionsMm = Eigen::Matrix3d::Identity() * o.voxelMm;
+    // On whole voxels from the world origin: a round voxel size then keeps every coordinate exact
+    // in NIfTI-1's single-precision sform, so every format gives the same volume.
+    v.originMm = ((box.min / o.voxelMm).array().floor() - 1.0).matrix() * o.voxelMm;
+    v.values.assign(v.voxels(), 0);
+    const std::size_t nx = static_cast<std::size_t>(v.size[0]), ny = static_cast<std::size_t>(v.size[1]);
+    tbb::parallel_for(0, v.size[2], [&](int k) {
+        for (std::size_t j = 0; j < ny; ++j)
+            for (std::size_t i = 0; i < nx; ++i) {
+                const Vec3 world = v.worldOf(static_cast<double>(i), static_cast<double>(j), k);
+                v.values[(static_cast<std::size_t>(k) * ny + j) * nx + i] = labelAt(an, phantom::toTemplate(an, world), o.pdlThicknessMm);
+            }
+    });
+    // Segments in label order, named as 3D Slicer users name them.
+    std::map<std::int32_t, std::size_t> counts;
+    for (std::int32_t x : v.values)
+        if (x != 0) ++counts[x];
+    for (const auto& [value, count] : counts) {
+        const LabelKind kind = labelKind(value);
+        const std::string name = kind == LabelKind::Bone ? jawName(an.jaw)
+                                                          : (kind == LabelKind::Tooth ? "tooth_" : "pdl_") + std::to_string(labelUnn(value));
+        v.segments.push_back({0, value, name, count});
+    }
+    if (axes)
+        for (const phantom::ToothSpec& t : an.teeth) (*axes)[t.unn] = phantom::toothAxes(an, t);
+    return v;
+}
+
+void writePhantomLabelCase(const LabelVolume& volume, Jaw jaw, const std::map<int, ToothAxes>& axes,
+                           const std::string& caseDir, const std::string& fileName) {
+    const std::filesystem::path dir = std::filesystem::path(caseDir) / "input" / jawName(jaw);
+    const bool slicer = fileName.size() > 9 && fileName.compare(fileName.size() - 9, 9, ".seg.nrrd") == 0;
+    writeLabelVolume(volume, (dir / fileName).string(), slicer);
+    if (!slicer) {
+        nlohmann::json labels = nlohmann::json::object();
+        for (const LabelSegment& s : volume.segments)
+            labels[std::to_string(s.value)] = s.name.rfind("tooth_", 0) == 0 || s.name.rfind("pdl_", 0) == 0 ? s.name : "bone";
+        nlohmann::json root = {{"labels", labels}};
+        writeFileAtomically((dir / "labels.json").string(), [&](std::ostream& out) { out << root.dump(2) << "\n"; }, false);
+    }
+    writeToothAxes(axes, (dir / ("teeth_axes_" + jawName(jaw) + ".json")).string());
+}
+
+}  // namespace jawmesh
