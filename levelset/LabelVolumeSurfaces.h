@@ -1,11 +1,12 @@
 // From a label volume to the surfaces the pipeline reads (issue #23): each role's voxels (bone,
 // each tooth; io/LabelRoles.h) become a smooth closed surface in world millimetres, then carving
 // and everything after it run as for surface input.
-//  - A role's voxels give a level set whose zero set is their boundary (OpenVDB
-//    topologyToLevelSet in voxel index space, no closing), smoothed by `smoothingSteps` mean
-//    filters (3x3x3, LevelSetFilter) so the staircase goes while the surface stays within a
-//    fraction of a voxel of the label boundary; extracted by volumeToMesh and mapped to world by
-//    the volume's voxel-to-world map (anisotropic and oblique spacing included).
+//  - A role's voxels give an indicator (-0.5 inside, +0.5 outside, a narrow band in voxel index
+//    space) smoothed by `smoothingSteps` box means, each followed by putting every voxel centre
+//    back on its side (constrained smoothing), so the staircase goes while the surface stays
+//    within a voxel of the label boundary; its iso value is then set so that the surface encloses
+//    the voxels' volume (smoothing rounds convex parts inward). Extracted by volumeToMesh and
+//    mapped to world by the volume's voxel-to-world map (anisotropic and oblique spacing included).
 //  - Segmented PDL labels are meshed as bone when the PDL is regenerated (the carve then cuts the
 //    PDL at the requested thickness, as for surfaces).
 #pragma once

@@ -98,12 +98,12 @@ openvdb::FloatGrid::Ptr sampleLevelSet(const std::function<double(const Vec3&)>&
     return grid;
 }
 
-SurfaceMesh extractLevelSetSurface(const openvdb::FloatGrid& grid) {
+SurfaceMesh extractLevelSetSurface(const openvdb::FloatGrid& grid, double isovalue) {
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> tris;
     std::vector<openvdb::Vec4I> quads;
-    openvdb::tools::volumeToMesh(grid, points, tris, quads, 0.0, 0.0, true);
-    if (quads.empty() && tris.empty()) throw Error("phantom: a level set holds no surface");
+    openvdb::tools::volumeToMesh(grid, points, tris, quads, isovalue, 0.0, true);
+    if (quads.empty() && tris.empty()) throw Error("a level set holds no surface");
     SurfaceMesh mesh;
     mesh.vertices.reserve(points.size());
     for (const auto& p : points) mesh.vertices.emplace_back(p.x(), p.y(), p.z());

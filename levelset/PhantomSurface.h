@@ -24,10 +24,11 @@ namespace jawmesh::phantom {
 openvdb::FloatGrid::Ptr sampleLevelSet(const std::function<double(const Vec3&)>& field, const BBox& box,
                                        double voxelMm, double lipschitz = 1.5);
 
-/// The zero iso-surface of a level set as a closed triangle mesh, oriented outward (positive
-/// volume). Vertices lie on the linearly interpolated zero crossings (OpenVDB volumeToMesh,
-/// adaptivity 0). Throws Error if the grid holds no surface. Cost: linear in the active voxels.
-SurfaceMesh extractLevelSetSurface(const openvdb::FloatGrid& grid);
+/// The iso-surface `isovalue` (0: the zero set) of a level set as a closed triangle mesh, oriented
+/// outward (positive volume). Vertices lie on the linearly interpolated crossings (OpenVDB
+/// volumeToMesh, adaptivity 0). Throws Error if the grid holds no surface. Cost: linear in the
+/// active voxels.
+SurfaceMesh extractLevelSetSurface(const openvdb::FloatGrid& grid, double isovalue = 0.0);
 
 /// Moves each vertex by a random tangential offset of at most amplitudeMm (tangent plane of the
 /// area-weighted vertex normal); a move that would turn any incident triangle by more than 60
