@@ -3,6 +3,7 @@
 #include "io/Error.h"
 #include "io/Labels.h"
 #include "levelset/Phantom.h"
+#include "io/LabelCase.h"
 #include "levelset/PhantomLabelVolume.h"
 
 #include <cstdio>
@@ -33,7 +34,7 @@ void writeLabelMaps(const PhantomArgs& args, const std::vector<Jaw>& jaws, const
         options.seed = args.seed;
         std::map<int, ToothAxes> axes;
         const LabelVolume volume = phantomLabelVolume(options, {args.voxelMm, args.pdlLabelsMm}, &axes);
-        writePhantomLabelCase(volume, jaw, axes, args.dir, args.labelMap);
+        writeLabelCase(volume, jaw, axes, args.dir, args.labelMap);
         if (!global.quiet)
             std::printf("%s: %d x %d x %d voxels of %.3f mm, %zu labels -> %s/input/%s/%s\n", jawName(jaw).c_str(), volume.size[0],
                         volume.size[1], volume.size[2], args.voxelMm, volume.segments.size(), args.dir.c_str(),

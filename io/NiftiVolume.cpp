@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 
 namespace jawmesh {
@@ -41,6 +42,16 @@ void readGeometry(const nifti_image& nim, LabelVolume& v) {
 
 LabelVolume readNiftiVolume(const std::string& path) {
     nifti_set_debug_level(0);  // our message names the file; the library's would go to stderr
+    {
+        // The header alone first: a size its file cannot hold (gzip inflates at most about 1032
+        // times) is refused before the library allocates it.
+        NiftiPtr header(nifti_image_read(path.c_str(), 0), nifti_image_free);
+        if (!header) throw Error(path, "cannot read as NIfTI (not a NIfTI-1/2 file)");
+        const double declared = static_cast<double>(header->nvox) * static_cast<double>(header->nbyper);
+        if (!(declared >= 0) || declared > 1100.0 * static_cast<double>(std::filesystem::file_size(path)) + 65536.0)
+            throw Error(path, "the header declares " + std::to_string(static_cast<long long>(declared)) +
+                                  " bytes of data, more than its file can hold");
+    }
     NiftiPtr nim(nifti_image_read(path.c_str(), 1), nifti_image_free);
     if (!nim || !nim->data) throw Error(path, "cannot read as NIfTI (not a NIfTI-1/2 file, or its data is truncated)");
     LabelVolume v;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 
 namespace jawmesh {
@@ -63,9 +64,32 @@ void readGeometry(const Nrrd& nrrd, unsigned first, LabelVolume& v) {
     for (int d = 0; d < 3; ++d) v.originMm[d] = std::isfinite(nrrd.spaceOrigin[d]) ? nrrd.spaceOrigin[d] : 0.0;
 }
 
+/// Refuses a header that declares far more data than its files hold (gzip inflates at most about
+/// 1032 times) before Teem allocates it: a corrupt size must not exhaust the memory.
+void requirePlausibleSize(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::unique_ptr<Nrrd, Nrrd* (*)(Nrrd*)> header(nrrdNew(), nrrdNuke);
+    std::unique_ptr<NrrdIoState, NrrdIoState* (*)(NrrdIoState*)> io(nrrdIoStateNew(), nrrdIoStateNix);
+    io->skipData = AIR_TRUE;
+    if (nrrdLoad(header.get(), path.c_str(), io.get())) throw Error(path, "cannot read as NRRD: " + teemError());
+    double available = static_cast<double>(fs::file_size(path));
+    for (unsigned i = 0; io->dataFNArr && i < io->dataFNArr->len; ++i) {
+        fs::path data(io->dataFN[i]);
+        if (data.is_relative()) data = fs::path(path).parent_path() / data;
+        std::error_code ec;
+        const auto size = fs::file_size(data, ec);
+        if (!ec) available += static_cast<double>(size);
+    }
+    const double declared = static_cast<double>(nrrdElementSize(header.get())) * static_cast<double>(nrrdElementNumber(header.get()));
+    if (declared > 1100.0 * available + 65536.0)
+        throw Error(path, "the header declares " + std::to_string(static_cast<long long>(declared)) +
+                              " bytes of data, more than its file(s) can hold");
+}
+
 }  // namespace
 
 LabelVolume readNrrdVolume(const std::string& path, std::map<std::string, std::string>& keyValues) {
+    requirePlausibleSize(path);
     std::unique_ptr<Nrrd, Nrrd* (*)(Nrrd*)> nrrd(nrrdNew(), nrrdNuke);
     if (nrrdLoad(nrrd.get(), path.c_str(), nullptr)) throw Error(path, "cannot read as NRRD: " + teemError());
     for (unsigned i = 0; i < nrrdKeyValueSize(nrrd.get()); ++i) {

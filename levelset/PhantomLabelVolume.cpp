@@ -1,16 +1,13 @@
 // Implements levelset/PhantomLabelVolume.h; what it computes, its rules and its contract are documented there.
 #include "levelset/PhantomLabelVolume.h"
 
-#include "io/AtomicFile.h"
 #include "io/Error.h"
 #include "io/Labels.h"
 #include "levelset/PhantomAnatomy.h"
 
-#include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <filesystem>
 
 namespace jawmesh {
 namespace {
@@ -72,21 +69,6 @@ LabelVolume phantomLabelVolume(const PhantomOptions& phantom, const PhantomLabel
     if (axes)
         for (const phantom::ToothSpec& t : an.teeth) (*axes)[t.unn] = phantom::toothAxes(an, t);
     return v;
-}
-
-void writePhantomLabelCase(const LabelVolume& volume, Jaw jaw, const std::map<int, ToothAxes>& axes,
-                           const std::string& caseDir, const std::string& fileName) {
-    const std::filesystem::path dir = std::filesystem::path(caseDir) / "input" / jawName(jaw);
-    const bool slicer = fileName.size() > 9 && fileName.compare(fileName.size() - 9, 9, ".seg.nrrd") == 0;
-    writeLabelVolume(volume, (dir / fileName).string(), slicer);
-    if (!slicer) {
-        nlohmann::json labels = nlohmann::json::object();
-        for (const LabelSegment& s : volume.segments)
-            labels[std::to_string(s.value)] = s.name.rfind("tooth_", 0) == 0 || s.name.rfind("pdl_", 0) == 0 ? s.name : "bone";
-        nlohmann::json root = {{"labels", labels}};
-        writeFileAtomically((dir / "labels.json").string(), [&](std::ostream& out) { out << root.dump(2) << "\n"; }, false);
-    }
-    writeToothAxes(axes, (dir / ("teeth_axes_" + jawName(jaw) + ".json")).string());
 }
 
 }  // namespace jawmesh

@@ -27,10 +27,4 @@ struct PhantomLabelOptions {
 LabelVolume phantomLabelVolume(const PhantomOptions& phantom, const PhantomLabelOptions& options,
                                std::map<int, ToothAxes>* axes = nullptr);
 
-/// Writes the label volume in the case layout: <caseDir>/input/<jaw>/<fileName> (labels.nrrd,
-/// labels.seg.nrrd with Slicer segment names, labels.nii or labels.nii.gz), labels.json naming
-/// every label (not for .seg.nrrd: its names say it) and teeth_axes_<jaw>.json. Atomic per file.
-void writePhantomLabelCase(const LabelVolume& volume, Jaw jaw, const std::map<int, ToothAxes>& axes,
-                           const std::string& caseDir, const std::string& fileName);
-
 }  // namespace jawmesh

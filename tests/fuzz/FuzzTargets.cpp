@@ -3,12 +3,18 @@
 
 #include "cli/RunOptions.h"
 #include "io/Error.h"
+#include "io/LabelRoles.h"
+#include "io/LabelVolume.h"
 #include "io/MeshIO.h"
 #include "io/ToothAxes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 
 namespace jawmesh::fuzz {
 namespace {
@@ -28,6 +34,28 @@ bool readsSurface(const std::string& bytes, const std::string& name) {
     try {
         return validSurface(readSurfaceFromMemory(bytes, name));
     } catch (const Error&) {
+        return true;
+    }
+}
+
+/// Writes the bytes to a file of this process with the given name ending, for readers of files.
+std::string scratchFile(const std::string& bytes, const std::string& suffix) {
+    const std::string path = (std::filesystem::temp_directory_path() / ("jawmesh-fuzz-" + std::to_string(::getpid()) + suffix)).string();
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+}
+
+bool readsVolume(const std::string& bytes, const std::string& suffix) {
+    const std::string path = scratchFile(bytes, suffix);
+    try {
+        const LabelVolume v = readLabelVolume(path);
+        std::filesystem::remove(path);
+        std::size_t labelled = 0;
+        for (const LabelSegment& s : v.segments) labelled += s.voxelCount;
+        return v.values.size() == v.voxels() * static_cast<std::size_t>(v.layers) && v.directionsMm.allFinite() &&
+               v.originMm.allFinite() && labelled > 0;
+    } catch (const Error&) {
+        std::filesystem::remove(path);
         return true;
     }
 }
@@ -71,11 +99,31 @@ bool configJson(const std::string& input) {
     return options.voxelSizeMm > 0 && options.bandVoxels >= 1 && options.carve.pdlRatio >= 0 && options.carve.pdlRatio <= 1;
 }
 
+bool nrrd(const std::string& input) { return readsVolume(input, ".nrrd"); }
+bool nifti(const std::string& input) { return readsVolume(input, ".nii"); }
+
+bool labelsJson(const std::string& input) {
+    LabelVolume v;
+    v.path = "fuzz volume";
+    v.size = {2, 1, 1};
+    v.values = {1, 124};
+    v.segments = {{0, 1, "", 1}, {0, 124, "", 1}};
+    const std::string path = scratchFile(input, "-labels.json");
+    try {
+        const LabelAssignment a = assignLabelRoles(v, Jaw::Mandible, path);
+        std::filesystem::remove(path);
+        return a.roles.size() == 2 && std::none_of(a.roles.begin(), a.roles.end(), [](const LabelRole& r) { return r.unn < 0; });
+    } catch (const Error&) {
+        std::filesystem::remove(path);
+        return true;
+    }
+}
 
 const std::vector<Target>& targets() {
     static const std::vector<Target> all = {{"stl_binary", stlBinary}, {"stl_ascii", stlAscii}, {"obj", obj},
                                             {"ply", ply},              {"off", off},            {"axes_json", axesJson},
-                                            {"config_json", configJson}};
+                                            {"config_json", configJson}, {"nrrd", nrrd},
+                                            {"nifti", nifti},          {"labels_json", labelsJson}};
     return all;
 }
 

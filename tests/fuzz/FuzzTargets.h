@@ -22,6 +22,12 @@ bool off(const std::string& input);
 bool axesJson(const std::string& input);
 /// Run config JSON (cli/RunOptions.h): accepted options are within their ranges.
 bool configJson(const std::string& input);
+/// Label volumes (io/LabelVolume.h), from a temporary file (the libraries read files): a volume
+/// read has as many values as voxels, a finite non-degenerate map and a labelled voxel.
+bool nrrd(const std::string& input);
+bool nifti(const std::string& input);
+/// labels.json (io/LabelRoles.h) for a fixed small volume: every segment gets a role.
+bool labelsJson(const std::string& input);
 
 struct Target {
     const char* name;  ///< also the corpus folder: tests/fuzz/corpus/<name>/, regressions/<name>/

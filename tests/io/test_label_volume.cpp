@@ -175,6 +175,9 @@ TEST(LabelVolume, RefusesEveryKindOfBadFileNamingIt) {
     fs::resize_file(dir / "cut.nii", fs::file_size(dir / "whole.nii") - 100);
     expectRefused(dir / "cut.nii", "cannot read as NIfTI");
     expectRefused(dir / "missing.nii.gz", "no such file");
+    // A size no file of this length can hold is refused before anything is allocated.
+    writeText(dir / "huge.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 100000 100000 1000\nencoding: gzip\n\nxx");
+    expectRefused(dir / "huge.nrrd", "more than its file(s) can hold");
 }
 
 TEST(LabelRoles, NamesFromSlicerAndFromLabelsJson) {
