@@ -22,10 +22,11 @@ SLURM_PACKAGES=(slurmctld slurmd slurm-client munge python3)
 # Only for `robustness`: clang with its libFuzzer runtime, and the symbolizer for readable reports.
 ROBUSTNESS_PACKAGES=(clang libclang-rt-14-dev llvm)
 # Quick tests left out of the sanitizer run: end-to-end pipeline runs that take minutes in the
-# Release build and 5-10x longer under ASan (the phantom run at default options, the batches, the
-# dirty-surface runs, the editing example). The determinism test stays: two small runs of the
-# whole pipeline (level sets, carving, surface, TetGen, evaluation, FE decks) under the sanitizers.
-SANITIZE_EXCLUDE="RunPhantom|BatchCommand|BadInput.DirtySurfacesAreMeshed|EditLevelSetsExample"
+# Release build and 5-10x longer under ASan (the phantom runs at default options, from surfaces
+# and from label volumes, the batches, the dirty-surface runs, the editing example). The
+# determinism test stays: two small runs of the whole pipeline (level sets, carving, surface,
+# TetGen, evaluation, FE decks) under the sanitizers.
+SANITIZE_EXCLUDE="RunPhantom|RunLabelMap|BatchCommand|BadInput.DirtySurfacesAreMeshed|EditLevelSetsExample"
 
 install_packages() {
   local missing=()
@@ -92,7 +93,7 @@ case "${1:-}" in
   robustness)
     install_packages "${TEST_PACKAGES[@]}" "${ROBUSTNESS_PACKAGES[@]}"
     sanitize_build
-    ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --test-dir build-asan -L quick -E "$SANITIZE_EXCLUDE" --output-on-failure -j "$(nproc)"
     bash tests/fuzz/run_fuzzers.sh "${FUZZ_SECONDS:-30}"
     ;;

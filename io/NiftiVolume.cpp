@@ -48,9 +48,9 @@ LabelVolume readNiftiVolume(const std::string& path) {
         NiftiPtr header(nifti_image_read(path.c_str(), 0), nifti_image_free);
         if (!header) throw Error(path, "cannot read as NIfTI (not a NIfTI-1/2 file)");
         const double declared = static_cast<double>(header->nvox) * static_cast<double>(header->nbyper);
-        if (!(declared >= 0) || declared > 1100.0 * static_cast<double>(std::filesystem::file_size(path)) + 65536.0)
-            throw Error(path, "the header declares " + std::to_string(static_cast<long long>(declared)) +
-                                  " bytes of data, more than its file can hold");
+        if (!(declared >= 0)) throw Error(path, "the header declares a negative number of voxels");
+        if (declared > 1100.0 * static_cast<double>(std::filesystem::file_size(path)) + 65536.0)
+            throw Error(path, "the header declares " + std::to_string(declared / 1e6) + " MB of data, more than its file can hold");
     }
     NiftiPtr nim(nifti_image_read(path.c_str(), 1), nifti_image_free);
     if (!nim || !nim->data) throw Error(path, "cannot read as NIfTI (not a NIfTI-1/2 file, or its data is truncated)");

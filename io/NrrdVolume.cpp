@@ -82,8 +82,7 @@ void requirePlausibleSize(const std::string& path) {
     }
     const double declared = static_cast<double>(nrrdElementSize(header.get())) * static_cast<double>(nrrdElementNumber(header.get()));
     if (declared > 1100.0 * available + 65536.0)
-        throw Error(path, "the header declares " + std::to_string(static_cast<long long>(declared)) +
-                              " bytes of data, more than its file(s) can hold");
+        throw Error(path, "the header declares " + std::to_string(declared / 1e6) + " MB of data, more than its file(s) can hold");
 }
 
 }  // namespace

@@ -2,12 +2,12 @@
 #include "levelset/LabelVolumeSurfaces.h"
 
 #include "io/Error.h"
-#include "levelset/PhantomSurface.h"
+#include "levelset/LevelSetSurface.h"
 
 #include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/Filter.h>
-#include <openvdb/tree/LeafManager.h>
 #include <openvdb/tools/TopologyToLevelSet.h>
+#include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -78,8 +78,8 @@ void smoothWithinVoxels(openvdb::FloatGrid& grid, const openvdb::MaskGrid& mask,
 /// surface back out; kept inside the margin so no voxel centre changes side. Volumes in voxels.
 double volumeMatchingIso(const openvdb::FloatGrid& grid, double voxels) {
     constexpr double kProbe = 0.02;
-    const double atZero = signedVolume(phantom::extractLevelSetSurface(grid, 0.0));
-    const double atProbe = signedVolume(phantom::extractLevelSetSurface(grid, kProbe));
+    const double atZero = signedVolume(extractLevelSetSurface(grid, 0.0));
+    const double atProbe = signedVolume(extractLevelSetSurface(grid, kProbe));
     if (!(atProbe > atZero)) return 0.0;
     const double iso = kProbe * (voxels - atZero) / (atProbe - atZero);
     return std::clamp(iso, -0.9 * kMarginVoxels, 0.9 * kMarginVoxels);
@@ -94,7 +94,7 @@ SurfaceMesh labelSurface(const LabelVolume& v, const std::vector<std::size_t>& s
     const openvdb::FloatGrid::Ptr indicator = indicatorOf(*mask);
     smoothWithinVoxels(*indicator, *mask, smoothingSteps);
     const double iso = volumeMatchingIso(*indicator, static_cast<double>(mask->activeVoxelCount()));
-    SurfaceMesh surface = phantom::extractLevelSetSurface(*indicator, iso);
+    SurfaceMesh surface = extractLevelSetSurface(*indicator, iso);
     for (Vec3& p : surface.vertices) p = v.worldOf(p.x(), p.y(), p.z());
     // An index-to-world map that mirrors (negative determinant) turns the winding inside out.
     if (signedVolume(surface) < 0)

@@ -4,6 +4,7 @@
 #include "io/Error.h"
 #include "io/MeshIO.h"
 #include "levelset/PhantomAnatomy.h"
+#include "levelset/LevelSetSurface.h"
 #include "levelset/PhantomSurface.h"
 
 #include <cmath>
@@ -29,7 +30,7 @@ SurfaceMesh makeSurface(const phantom::JawAnatomy& an, const std::function<doubl
     box.min -= Vec3::Constant(2 * voxel);
     box.max += Vec3::Constant(2 * voxel);
     const auto grid = phantom::sampleLevelSet(world, box, voxel);
-    SurfaceMesh mesh = phantom::extractLevelSetSurface(*grid);
+    SurfaceMesh mesh = extractLevelSetSurface(*grid);
     phantom::jitterTangentially(mesh, kJitterVoxels * voxel, seed);
     return mesh;
 }

@@ -1,6 +1,6 @@
 // From an implicit function to a segmentation-like surface (helper of Phantom.h): sample the
 // function into a narrow-band level set, extract it with OpenVDB's volumeToMesh (quads split along
-// their shorter diagonal), then move vertices tangentially at random so the triangulation looks
+// their shorter diagonal, levelset/LevelSetSurface.h), then move vertices tangentially at random so the triangulation looks
 // like marching cubes plus smoothing rather than a clean grid.
 #pragma once
 
@@ -23,12 +23,6 @@ namespace jawmesh::phantom {
 /// voxels of the zero set (sub-blocks farther away are skipped by the same test).
 openvdb::FloatGrid::Ptr sampleLevelSet(const std::function<double(const Vec3&)>& field, const BBox& box,
                                        double voxelMm, double lipschitz = 1.5);
-
-/// The iso-surface `isovalue` (0: the zero set) of a level set as a closed triangle mesh, oriented
-/// outward (positive volume). Vertices lie on the linearly interpolated crossings (OpenVDB
-/// volumeToMesh, adaptivity 0). Throws Error if the grid holds no surface. Cost: linear in the
-/// active voxels.
-SurfaceMesh extractLevelSetSurface(const openvdb::FloatGrid& grid, double isovalue = 0.0);
 
 /// Moves each vertex by a random tangential offset of at most amplitudeMm (tangent plane of the
 /// area-weighted vertex normal); a move that would turn any incident triangle by more than 60

@@ -27,7 +27,7 @@ for t in "${targets[@]}"; do
   [ -d "tests/fuzz/regressions/$t" ] && seeds+=("tests/fuzz/regressions/$t")
   echo "== fuzz_$t for ${seconds} s"
   # New inputs go to the first folder (the build's working corpus); the repository's are read only.
-  if ! UBSAN_OPTIONS=print_stacktrace=1 ./build-fuzz/tests/fuzz/fuzz_"$t" "$work" "${seeds[@]}" \
+  if ! UBSAN_OPTIONS=print_stacktrace=1 LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" ./build-fuzz/tests/fuzz/fuzz_"$t" "$work" "${seeds[@]}" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
       -artifact_prefix="$crashes/" -print_final_stats=1 > "build-fuzz/fuzz_$t.log" 2>&1; then
     failed+=("$t")
