@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <iostream>
 
@@ -56,6 +58,65 @@ TEST(ToothAxesFromShape, RecoversThePhantomAxesInBothJaws) {
                 EXPECT_LT(c.centreMm, 2.5);
             }
         }
+    }
+}
+
+/// The phantom's arch bent by f(x, y, z) = (1.12 x, 0.92 y + 0.006 x^2, z) (wider, with the back
+/// teeth further back) while every tooth stays rigid: each moves to f of its crown centre, turned
+/// about the vertical as the arch's tangent turns there, its construction axes with it. The bone is
+/// bent by f itself. Teeth of a real wider arch follow it that way; stretching the teeth themselves
+/// would turn their crown outlines away from their frames (measured: premolars 9-13 degrees).
+PhantomJaw archBent(const PhantomJaw& jaw) {
+    auto f = [](const Vec3& p) { return Vec3(1.12 * p.x(), 0.92 * p.y() + 0.006 * p.x() * p.x(), p.z()); };
+    PhantomJaw out = jaw;
+    for (Vec3& v : out.bone.vertices) v = f(v);
+    for (auto& [unn, mesh] : out.teeth) {
+        ToothAxes& a = out.axes.at(unn);
+        // The arch's tangent at the tooth goes to jacobian * tangent: the tooth turns about the
+        // vertical by the angle between the two, so it keeps its place along the arch.
+        Eigen::Matrix3d jacobian = Eigen::Matrix3d::Identity();
+        jacobian.topLeftCorner<2, 2>() << 1.12, 0.0, 0.012 * a.crownCentre.x(), 0.92;
+        const Vec3 tangent = Vec3(a.mesialDistal.x(), a.mesialDistal.y(), 0).normalized();
+        const Vec3 bentTangent = (jacobian * tangent).normalized();
+        const Eigen::Matrix3d turn =
+            Eigen::AngleAxisd(std::atan2(tangent.cross(bentTangent).z(), tangent.dot(bentTangent)), Vec3::UnitZ()).toRotationMatrix();
+        const Vec3 centre = a.crownCentre, moved = f(centre);
+        for (Vec3& v : mesh.vertices) v = moved + turn * (v - centre);
+        a = {moved, turn * a.mesialDistal, turn * a.labial, turn * a.occlusal};
+    }
+    return out;
+}
+
+// Issue #26's phantom variants: the jaw turned 35 degrees about an oblique axis and moved (the
+// computed axes must turn with it: nothing may depend on the scanner's frame), and the arch bent
+// wider with rigid teeth. Both jaws, whose molars have two (mandible) and three (maxilla)
+// divergent roots. Bounds as for the unmoved phantom; the issue's 5 degrees are not met
+// (docs/BENCHMARKS.md: the crown axis leans by the taper of the phantom's labial faces).
+TEST(ToothAxesFromShape, TurnWithTheJawAndHoldOnABentArch) {
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(35.0 * M_PI / 180.0, Vec3(0.3, -0.5, 0.8).normalized()).toRotationMatrix();
+    for (Jaw jaw : {Jaw::Mandible, Jaw::Maxilla}) {
+        SCOPED_TRACE(jawName(jaw));
+        PhantomOptions o;
+        o.jaw = jaw;
+        o.trianglesScale = 0.3;
+        const PhantomJaw phantom = makePhantom(o);
+        const auto plain = toothAxesFromShape(phantom.teeth, jaw, phantom.bone);
+        PhantomJaw turned = phantom;
+        for (SurfaceMesh* m : {&turned.bone}) for (Vec3& v : m->vertices) v = turn * v + Vec3(40, -25, 110);
+        for (auto& [unn, mesh] : turned.teeth) for (Vec3& v : mesh.vertices) v = turn * v + Vec3(40, -25, 110);
+        const auto turnedAxes = toothAxesFromShape(turned.teeth, jaw, turned.bone);
+        double worstTurn = 0;
+        for (const auto& [unn, a] : plain) {
+            const ToothAxes& b = turnedAxes.at(unn);
+            worstTurn = std::max({worstTurn, angleDeg(turn * a.occlusal, b.occlusal), angleDeg(turn * a.labial, b.labial)});
+        }
+        std::cout << jawName(jaw) << ": turned jaw's axes within " << worstTurn << " deg of the turned axes\n";
+        EXPECT_LT(worstTurn, 0.5);
+        const PhantomJaw bent = archBent(phantom);
+        const Worst w = worstAgainstConstruction(bent, AxesFromShapeOptions(), bent.bone);
+        std::cout << jawName(jaw) << ": bent arch, long " << w.longDeg << ", labial " << w.labialDeg << " deg\n";
+        EXPECT_LT(w.longDeg, 12.0);
+        EXPECT_LT(w.labialDeg, 12.0);
     }
 }
 
