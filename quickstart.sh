@@ -76,14 +76,15 @@ case "${1:-}" in
   mandible-test)
     # The whole pipeline on the shared mandible (about 3 minutes on 2 cores), then the tests that check a
     # finished run (tests/cli/slow_run_mandible.cpp, SlowEval, the interface surface
-    # against the run's label field); not part of CI's time.
+    # against the run's label field) and the mandible given as a label volume
+    # (tests/cli/slow_label_map_mandible.cpp, another 5 minutes); not part of CI's time.
     install_packages "${TEST_PACKAGES[@]}"
     build
     [ -d ../shared/data/openmandible ] || { echo "no ../shared/data/openmandible" >&2; exit 1; }
     rm -rf build/mandible-run
     ./build/cli/jawmesh run ../shared/data/openmandible -o build/mandible-run --jaw mandible --write-levelsets
-    JAWMESH_MANDIBLE_RUN="$PWD/build/mandible-run/mandible" \
-      ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun|SlowInterfaces' --output-on-failure
+    JAWMESH_MANDIBLE_RUN="$PWD/build/mandible-run/mandible" JAWMESH_LABEL_MAP_TEST=1 \
+      ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun|SlowInterfaces|SlowLabelMap' --output-on-failure
     ;;
   slurm-test)
     install_packages "${TEST_PACKAGES[@]}" "${SLURM_PACKAGES[@]}"

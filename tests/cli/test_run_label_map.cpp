@@ -3,11 +3,9 @@
 // against the surfaces of its labels; its volume is the labels' voxel volume; segmented PDL labels
 // are refused until asked to be regenerated, then meshed.
 #include "io/GmshReader.h"
-#include "io/LabelRoles.h"
 #include "io/LabelVolume.h"
-#include "io/MeshIO.h"
-#include "levelset/LabelVolumeSurfaces.h"
 #include "support/TestData.h"
+#include "support_LabelCase.h"
 #include "support_RunChecks.h"
 
 #include <gtest/gtest.h>
@@ -38,14 +36,6 @@ double meshVolumeMm3(const TetMesh& mesh) {
     return volume;
 }
 
-/// Writes the surfaces of a label case's volume as a surface case's input folder, for measureRun.
-void writeLabelSurfaces(const fs::path& labelJawDir, const fs::path& outJawDir) {
-    const LabelVolume v = readLabelVolume((labelJawDir / "labels.nii.gz").string());
-    const JawSurfaces s = surfacesFromLabelVolume(v, assignLabelRoles(v, Jaw::Mandible, (labelJawDir / "labels.json").string()), Jaw::Mandible);
-    writeSurface(s.bone, (outJawDir / "bone" / "mandible.stl").string());
-    for (const auto& [unn, tooth] : s.teeth) writeSurface(tooth, (outJawDir / "teeth" / ("tooth_" + std::to_string(unn) + ".stl")).string());
-}
-
 TEST(RunLabelMap, SlicerAndNiftiGiveOneMeshThatMeetsTheTargets) {
     const fs::path dir = test::scratchDir("run-label-map");
     const std::string bin = JAWMESH_BINARY;
@@ -61,7 +51,7 @@ TEST(RunLabelMap, SlicerAndNiftiGiveOneMeshThatMeetsTheTargets) {
     EXPECT_EQ(fileText(dir / "out-slicer" / msh), fileText(dir / "out-nifti" / msh)) << "the two formats gave different meshes";
 
     const fs::path labelJaw = dir / "nifti" / "input" / "mandible";
-    writeLabelSurfaces(labelJaw, dir / "surfaces");
+    test::writeLabelSurfaces(labelJaw.string(), (dir / "surfaces").string());
     const std::vector<int> teeth = test::teethIn((dir / "surfaces" / "teeth").string());
     ASSERT_EQ(teeth, std::vector<int>{24});
     const test::RunFigures f = test::measureRun((dir / "out-nifti" / "mandible").string(), (dir / "surfaces").string(), "mandible", teeth);
