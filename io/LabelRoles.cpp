@@ -68,7 +68,8 @@ std::map<std::int32_t, LabelRole> readLabelsJson(const std::string& path, PdlLab
     return roles;
 }
 
-void checkAssignment(const LabelVolume& volume, Jaw jaw, const LabelAssignment& a, const std::string& source) {
+void checkAssignment(const LabelVolume& volume, Jaw jaw, const LabelAssignment& a, const std::vector<bool>& named,
+                     const std::string& source) {
     std::string unmapped;
     std::set<int> teeth, pdls;
     bool bone = false;
@@ -84,7 +85,7 @@ void checkAssignment(const LabelVolume& volume, Jaw jaw, const LabelAssignment& 
         }
     }
     for (std::size_t i = 0; i < a.roles.size(); ++i)
-        if (a.roles[i].kind == LabelRole::Kind::Ignore && a.roles[i].unn < 0) unmapped += "\n  " + describe(volume.segments[i]);
+        if (!named[i]) unmapped += "\n  " + describe(volume.segments[i]);
     if (!unmapped.empty())
         throw Error(source, "labels without a role (map them in labels.json: bone, tooth_<UNN>, pdl_<UNN> or ignore):" + unmapped);
     for (int unn : pdls)
@@ -120,15 +121,16 @@ LabelAssignment assignLabelRoles(const LabelVolume& volume, Jaw jaw, const std::
     LabelAssignment a;
     std::map<std::int32_t, LabelRole> fromJson;
     if (!labelsJsonPath.empty()) fromJson = readLabelsJson(labelsJsonPath, a.pdl);
+    std::vector<bool> named;  // whether labels.json or the segment's name gave it a role
     for (const LabelSegment& s : volume.segments) {
-        LabelRole role{LabelRole::Kind::Ignore, -1};  // unn -1 marks "no role found"
+        LabelRole role;
         const auto it = fromJson.find(s.value);
         if (it != fromJson.end()) role = it->second;
-        else if (!roleFromName(s.name, role)) role = {LabelRole::Kind::Ignore, -1};
+        named.push_back(it != fromJson.end() || roleFromName(s.name, role));
         a.hasPdl = a.hasPdl || role.kind == LabelRole::Kind::Pdl;
         a.roles.push_back(role);
     }
-    checkAssignment(volume, jaw, a, labelsJsonPath.empty() ? volume.path : labelsJsonPath);
+    checkAssignment(volume, jaw, a, named, labelsJsonPath.empty() ? volume.path : labelsJsonPath);
     return a;
 }
 

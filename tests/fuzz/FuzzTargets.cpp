@@ -112,7 +112,9 @@ bool labelsJson(const std::string& input) {
     try {
         const LabelAssignment a = assignLabelRoles(v, Jaw::Mandible, path);
         std::filesystem::remove(path);
-        return a.roles.size() == 2 && std::none_of(a.roles.begin(), a.roles.end(), [](const LabelRole& r) { return r.unn < 0; });
+        return a.roles.size() == 2 && std::none_of(a.roles.begin(), a.roles.end(), [](const LabelRole& r) {
+                   return (r.kind == LabelRole::Kind::Tooth || r.kind == LabelRole::Kind::Pdl) && !isValidUnn(r.unn);
+               });
     } catch (const Error&) {
         std::filesystem::remove(path);
         return true;
