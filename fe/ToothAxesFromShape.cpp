@@ -119,9 +119,20 @@ bool labialFaceNormal(const SurfaceMesh& mesh, double orientation, const Vec3& c
     return true;
 }
 
+/// The crown centre for a long axis `occlusal`: the volume centroid of the occlusal crownFraction
+/// of the tooth's length.
+Vec3 crownCentreOf(const SurfaceMesh& mesh, const Shape& s, const Vec3& occlusal, double crownFraction) {
+    double top = -std::numeric_limits<double>::infinity(), bottom = -top;
+    for (const Vec3& v : mesh.vertices) {
+        const double h = (v - s.centroid).dot(occlusal);
+        top = std::max(top, h), bottom = std::min(bottom, h);
+    }
+    const Vec3 cut = s.centroid + (top - crownFraction * (top - bottom)) * occlusal;
+    return clippedCentroid(mesh, cut, occlusal, s.orientation);
+}
+
 /// The frame of a tooth for a long axis `occlusal`: mesial-distal along `distal` (made
-/// perpendicular), labial completing it away from the arch centre, and the crown centre (volume
-/// centroid of the occlusal crownFraction of the tooth's length).
+/// perpendicular), labial completing it away from the arch centre, and the crown centre.
 ToothAxes frameAndCrownCentre(const SurfaceMesh& mesh, const Shape& s, const Vec3& occlusal, const Vec3& distal,
                               const Vec3& archCentre, double crownFraction) {
     ToothAxes a;
@@ -129,13 +140,7 @@ ToothAxes frameAndCrownCentre(const SurfaceMesh& mesh, const Shape& s, const Vec
     a.mesialDistal = (distal - distal.dot(occlusal) * occlusal).normalized();
     a.labial = a.occlusal.cross(a.mesialDistal).normalized();
     if (a.labial.dot(s.centroid - archCentre) < 0) a.labial = -a.labial;
-    double top = -std::numeric_limits<double>::infinity(), bottom = -top;
-    for (const Vec3& v : mesh.vertices) {
-        const double h = (v - s.centroid).dot(a.occlusal);
-        top = std::max(top, h), bottom = std::min(bottom, h);
-    }
-    const Vec3 cut = s.centroid + (top - crownFraction * (top - bottom)) * a.occlusal;
-    a.crownCentre = clippedCentroid(mesh, cut, a.occlusal, s.orientation);
+    a.crownCentre = crownCentreOf(mesh, s, occlusal, crownFraction);
     return a;
 }
 
@@ -159,17 +164,7 @@ Vec3 loneToothDirection(const SurfaceMesh& mesh, const Shape& s) {
 std::vector<Vec3> archTangentsOf(const std::map<int, SurfaceMesh>& teeth, const std::map<int, Shape>& shapes,
                                  const Vec3& occlusalNormal, double sense, double crownFraction) {
     std::vector<Vec3> centres;
-    for (const auto& [unn, s] : shapes) {
-        const SurfaceMesh& mesh = teeth.at(unn);
-        const Vec3 occlusal = sense * s.longAxis;
-        double top = -std::numeric_limits<double>::infinity(), bottom = -top;
-        for (const Vec3& v : mesh.vertices) {
-            const double h = (v - s.centroid).dot(occlusal);
-            top = std::max(top, h), bottom = std::min(bottom, h);
-        }
-        const Vec3 cut = s.centroid + (top - crownFraction * (top - bottom)) * occlusal;
-        centres.push_back(clippedCentroid(mesh, cut, occlusal, s.orientation));
-    }
+    for (const auto& [unn, s] : shapes) centres.push_back(crownCentreOf(teeth.at(unn), s, sense * s.longAxis, crownFraction));
     return archTangents(centres, occlusalNormal);
 }
 
@@ -229,7 +224,7 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
         const int unn = it->first;
         const Shape& s = it->second;
         const SurfaceMesh& mesh = teeth.at(unn);
-        Vec3 along = tangents.empty() ? loneToothDirection(mesh, s) : tangents[index];
+        const Vec3 along = tangents.empty() ? loneToothDirection(mesh, s) : tangents[index];
         if (tangents.empty() && notes) notes->push_back("tooth " + std::to_string(unn) + ": no neighbours, mesial-distal and labial senses guessed");
         MesialDistalChoice choice;
         auto frameFor = [&](const Vec3& occlusal) {

@@ -160,8 +160,7 @@ CaseInfo discoverCase(const std::string& caseDir) {
 JawSurfaces loadJaw(const JawCase& jc, const LoadOptions& options, Progress& progress) {
     if (!jc.labelVolumePath.empty())
         throw Error(jc.labelVolumePath, "a label volume is read by loadJawInput (levelset/JawInput.h), not as surfaces");
-    if (!(options.scale >= 0) || !std::isfinite(options.scale))
-        throw Error(jc.bonePath, "scale must be a positive number (or 0 for automatic), not " + std::to_string(options.scale));
+    requireValidScale(options, jc.bonePath);
     JawSurfaces out;
     out.jaw = jc.jaw;
 
@@ -234,6 +233,15 @@ JawSurfaces loadJaw(const JawCase& jc, const LoadOptions& options, Progress& pro
         if (!out.teeth.count(unn))
             out.notes.push_back(jc.axesPath + ": axes of tooth " + std::to_string(unn) + " ignored (no such tooth)");
     return out;
+}
+
+std::string boneSource(const JawCase& jawCase) {
+    return jawCase.labelVolumePath.empty() ? jawCase.bonePath : jawCase.labelVolumePath;
+}
+
+void requireValidScale(const LoadOptions& options, const std::string& file) {
+    if (!(options.scale >= 0) || !std::isfinite(options.scale))
+        throw Error(file, "scale must be a positive number (or 0 for automatic), not " + std::to_string(options.scale));
 }
 
 std::string toothSource(const JawCase& jawCase, int unn) {

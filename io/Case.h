@@ -79,6 +79,12 @@ struct JawSurfaces {
 JawSurfaces loadJaw(const JawCase& jawCase, const LoadOptions& options = {}, Progress& progress = noProgress());
 
 
+/// The input file of a jaw case's bone, for messages (its label volume when the jaw is one).
+std::string boneSource(const JawCase& jawCase);
+
+/// Throws Error naming `file` unless options.scale is 0 (automatic) or a positive number.
+void requireValidScale(const LoadOptions& options, const std::string& file);
+
 /// The input file of tooth `unn` of a jaw case, for messages ("<all_teeth.obj> (tooth 24)" when
 /// the teeth came from one file).
 std::string toothSource(const JawCase& jawCase, int unn);

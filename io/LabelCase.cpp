@@ -10,6 +10,13 @@
 
 namespace jawmesh {
 
+void nameSegmentsByLabel(std::vector<LabelSegment>& segments, Jaw jaw) {
+    for (LabelSegment& s : segments) {
+        const LabelKind kind = labelKind(s.value);
+        s.name = kind == LabelKind::Bone ? jawName(jaw) : (kind == LabelKind::Tooth ? "tooth_" : "pdl_") + std::to_string(labelUnn(s.value));
+    }
+}
+
 void writeLabelCase(const LabelVolume& volume, Jaw jaw, const std::map<int, ToothAxes>& axes, const std::string& caseDir,
                     const std::string& fileName) {
     const std::filesystem::path dir = std::filesystem::path(caseDir) / "input" / jawName(jaw);

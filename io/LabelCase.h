@@ -11,6 +11,10 @@
 
 namespace jawmesh {
 
+/// Names segments as io/Labels.h reads their values: the jaw's name for bone, "tooth_<UNN>",
+/// "pdl_<UNN>" (what 3D Slicer users call them, and what labels.json maps them to).
+void nameSegmentsByLabel(std::vector<LabelSegment>& segments, Jaw jaw);
+
 /// Writes <caseDir>/input/<jaw>/<fileName> (labels.nrrd, labels.seg.nrrd with the segments'
 /// names as 3D Slicer keeps them, labels.nii or labels.nii.gz), labels.json mapping every
 /// segment's value to its role by its name (not for .seg.nrrd: its names say it) and, when `axes`

@@ -57,26 +57,6 @@ std::vector<LabelSegment> slicerSegments(const std::map<std::string, std::string
     return segments;
 }
 
-/// One segment per non-zero value of a plain label map, in value order, with voxel counts.
-std::vector<LabelSegment> valueSegments(const LabelVolume& v) {
-    std::map<std::int32_t, std::size_t> counts;
-    std::int32_t last = 0;
-    std::size_t run = 0;
-    for (std::int32_t x : v.values) {
-        if (x == last) {
-            ++run;
-            continue;
-        }
-        counts[last] += run;
-        last = x, run = 1;
-    }
-    counts[last] += run;
-    std::vector<LabelSegment> segments;
-    for (const auto& [value, count] : counts)
-        if (value != 0 && count > 0) segments.push_back({0, value, "", count});
-    return segments;
-}
-
 void checkGeometry(const LabelVolume& v) {
     if (std::min({v.size[0], v.size[1], v.size[2]}) < 1) throw Error(v.path, "a volume with no voxels");
     if (!v.directionsMm.allFinite() || !v.originMm.allFinite()) throw Error(v.path, "the voxel-to-world map is not finite");
@@ -105,6 +85,30 @@ bool convertValues(const void* data, VoxelType type, std::size_t count, std::vec
         case VoxelType::Other: return false;
     }
     return false;
+}
+
+bool fitsUint16(const std::vector<std::int32_t>& values) {
+    return std::all_of(values.begin(), values.end(), [](std::int32_t x) { return x >= 0 && x <= 65535; });
+}
+
+std::vector<LabelSegment> valueSegments(const LabelVolume& v) {
+    std::map<std::int32_t, std::size_t> counts;
+    std::int32_t last = 0;
+    std::size_t run = 0;  // labels come in runs: one map update per run
+    for (std::size_t i = 0; i < v.voxels(); ++i) {
+        const std::int32_t x = v.values[i];
+        if (x == last) {
+            ++run;
+            continue;
+        }
+        counts[last] += run;
+        last = x, run = 1;
+    }
+    counts[last] += run;
+    std::vector<LabelSegment> segments;
+    for (const auto& [value, count] : counts)
+        if (value != 0 && count > 0) segments.push_back({0, value, "", count});
+    return segments;
 }
 
 bool isLabelVolumePath(const std::string& path) { return isNrrd(path) || isNifti(path); }

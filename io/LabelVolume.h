@@ -40,6 +40,9 @@ struct LabelVolume {
     Vec3 worldOf(double i, double j, double k) const { return originMm + directionsMm * Vec3(i, j, k); }
 };
 
+/// One segment per non-zero value of layer 0, in value order, with its voxel count (no names).
+std::vector<LabelSegment> valueSegments(const LabelVolume& volume);
+
 /// True when `path` names a label volume this reader takes (.nrrd, .nhdr, .nii, .nii.gz).
 bool isLabelVolumePath(const std::string& path);
 

@@ -75,8 +75,7 @@ LabelVolume readNiftiVolume(const std::string& path) {
 
 void writeNiftiVolume(const LabelVolume& v, const std::string& path) {
     if (v.layers != 1) throw Error(path, "NIfTI holds one layer; write a layered segmentation as .seg.nrrd");
-    bool fits16 = true;
-    for (std::int32_t x : v.values) fits16 = fits16 && x >= 0 && x <= 65535;
+    const bool fits16 = fitsUint16(v.values);
     const int64_t dims[8] = {3, v.size[0], v.size[1], v.size[2], 1, 1, 1, 1};
     NiftiPtr nim(nifti_make_new_nim(dims, fits16 ? DT_UINT16 : DT_INT32, 1), nifti_image_free);
     if (!nim) throw Error(path, "cannot make a NIfTI image");

@@ -131,8 +131,7 @@ LabelVolume readNrrdVolume(const std::string& path, std::map<std::string, std::s
 
 void writeNrrdVolume(const LabelVolume& v, const std::map<std::string, std::string>& keyValues, const std::string& path) {
     const std::size_t n = v.voxels(), layers = static_cast<std::size_t>(v.layers);
-    bool fits16 = true;
-    for (std::int32_t x : v.values) fits16 = fits16 && x >= 0 && x <= 65535;
+    const bool fits16 = fitsUint16(v.values);
     // Teem writes from a buffer of the file's type and order (layer fastest).
     std::vector<std::uint16_t> data16;
     std::vector<std::int32_t> data32;

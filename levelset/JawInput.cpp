@@ -14,8 +14,7 @@ namespace jawmesh {
 
 JawSurfaces loadJawInput(const JawCase& jc, const LoadOptions& options, Progress& progress) {
     if (jc.labelVolumePath.empty()) return loadJaw(jc, options, progress);
-    if (!(options.scale >= 0) || !std::isfinite(options.scale))
-        throw Error(jc.labelVolumePath, "scale must be a positive number (or 0 for automatic), not " + std::to_string(options.scale));
+    requireValidScale(options, jc.labelVolumePath);
     LabelVolume volume = [&] {
         ProgressStage stage(progress, "read " + jawName(jc.jaw) + " label volume");
         return readLabelVolume(jc.labelVolumePath);

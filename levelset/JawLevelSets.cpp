@@ -21,7 +21,7 @@ JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, d
         }
     };
     JawLevelSets sets;
-    sets.bone = levelSet(surfaces.bone, boneLabel(surfaces.jaw), jawCase.bonePath.empty() ? jawCase.labelVolumePath : jawCase.bonePath);
+    sets.bone = levelSet(surfaces.bone, boneLabel(surfaces.jaw), boneSource(jawCase));
     for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = levelSet(mesh, toothLabel(unn), toothSource(jawCase, unn));
     // Teeth in contact overlap a little and the carving splits them; a large shared volume is a
     // segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.

@@ -20,9 +20,13 @@
 
 namespace jawmesh {
 
+/// Box means of the constrained smoothing: 2 take the staircase away (more only round more).
+constexpr int kLabelSmoothingSteps = 2;
+
 /// The surface of the voxels of the given segments (indices into volume.segments), outward.
 /// Throws Error naming the volume when they hold no voxel. Cost: linear in the segments' voxels.
-SurfaceMesh labelSurface(const LabelVolume& volume, const std::vector<std::size_t>& segments, int smoothingSteps = 2);
+SurfaceMesh labelSurface(const LabelVolume& volume, const std::vector<std::size_t>& segments,
+                         int smoothingSteps = kLabelSmoothingSteps);
 
 /// Bone and tooth surfaces of a jaw's label volume under `roles` (PDL segments go to the bone
 /// when roles.pdl is Generate; Keep is refused with a message until the kept PDL is meshed).

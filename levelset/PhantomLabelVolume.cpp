@@ -2,6 +2,7 @@
 #include "levelset/PhantomLabelVolume.h"
 
 #include "io/Error.h"
+#include "io/LabelCase.h"
 #include "io/Labels.h"
 #include "levelset/PhantomAnatomy.h"
 
@@ -56,16 +57,8 @@ LabelVolume phantomLabelVolume(const PhantomOptions& phantom, const PhantomLabel
                 v.values[(static_cast<std::size_t>(k) * ny + j) * nx + i] = labelAt(an, phantom::toTemplate(an, world), o.pdlThicknessMm);
             }
     });
-    // Segments in label order, named as 3D Slicer users name them.
-    std::map<std::int32_t, std::size_t> counts;
-    for (std::int32_t x : v.values)
-        if (x != 0) ++counts[x];
-    for (const auto& [value, count] : counts) {
-        const LabelKind kind = labelKind(value);
-        const std::string name = kind == LabelKind::Bone ? jawName(an.jaw)
-                                                          : (kind == LabelKind::Tooth ? "tooth_" : "pdl_") + std::to_string(labelUnn(value));
-        v.segments.push_back({0, value, name, count});
-    }
+    v.segments = valueSegments(v);
+    nameSegmentsByLabel(v.segments, an.jaw);
     if (axes)
         for (const phantom::ToothSpec& t : an.teeth) (*axes)[t.unn] = phantom::toothAxes(an, t);
     return v;

@@ -1,12 +1,12 @@
 // Implements levelset/SurfacesToLabelVolume.h; what it computes, its rules and its contract are documented there.
 #include "levelset/SurfacesToLabelVolume.h"
 
+#include "io/LabelCase.h"
 #include "io/Labels.h"
 #include "levelset/JawLevelSets.h"
 
 #include <tbb/parallel_for.h>
 
-#include <map>
 
 namespace jawmesh {
 namespace {
@@ -53,11 +53,8 @@ LabelVolume labelVolumeFromSurfaces(const JawSurfaces& surfaces, const JawCase& 
     for (const auto& [unn, grid] : sets.teeth)
         paint(v, *grid, box.min(), toothLabel(unn), [](std::int32_t value) { return value == 0; });
     paint(v, *sets.bone, box.min(), bone, [](std::int32_t value) { return value == 0; });
-    std::map<std::int32_t, std::size_t> counts;
-    for (std::int32_t x : v.values)
-        if (x != 0) ++counts[x];
-    for (const auto& [value, count] : counts)
-        v.segments.push_back({0, value, value == bone ? jawName(jawCase.jaw) : "tooth_" + std::to_string(labelUnn(value)), count});
+    v.segments = valueSegments(v);
+    nameSegmentsByLabel(v.segments, jawCase.jaw);
     return v;
 }
 

@@ -47,12 +47,7 @@ TEST(SlowLabelMap, SharedMandibleAsALabelVolumeMeetsTheRunTargets) {
     std::size_t labelled = 0;
     for (const LabelSegment& s : volume.segments) labelled += s.voxelCount;
     const TetMesh mesh = readGmsh((dir / "out" / "mandible" / "volumetric_meshes" / "mandible.msh").string());
-    double meshMm3 = 0;
-    for (const auto& t : mesh.tets) {
-        const Vec3& a = mesh.nodes[static_cast<std::size_t>(t[0])];
-        meshMm3 += std::abs((mesh.nodes[static_cast<std::size_t>(t[1])] - a)
-                                .dot((mesh.nodes[static_cast<std::size_t>(t[2])] - a).cross(mesh.nodes[static_cast<std::size_t>(t[3])] - a))) / 6.0;
-    }
+    const double meshMm3 = test::totalVolumeMm3(mesh);
     const double labelledMm3 = static_cast<double>(labelled) * std::abs(volume.directionsMm.determinant());
     std::cout << "mesh " << meshMm3 << " mm^3, labelled voxels " << labelledMm3 << " mm^3\n";
     EXPECT_NEAR(meshMm3 / labelledMm3, 1.0, 0.03);

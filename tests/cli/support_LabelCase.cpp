@@ -6,10 +6,17 @@
 #include "io/LabelVolume.h"
 #include "io/MeshIO.h"
 #include "levelset/LabelVolumeSurfaces.h"
+#include "tet/ElementQuality.h"
 
 #include <filesystem>
 
 namespace jawmesh::test {
+
+double totalVolumeMm3(const TetMesh& mesh) {
+    double total = 0;
+    for (const auto& [label, volume] : labelVolumesMm3(mesh)) total += volume;
+    return total;
+}
 
 void writeLabelSurfaces(const std::string& labelJawDir, const std::string& outJawDir) {
     namespace fs = std::filesystem;

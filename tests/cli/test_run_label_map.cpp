@@ -26,16 +26,6 @@ std::string fileText(const fs::path& p) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-double meshVolumeMm3(const TetMesh& mesh) {
-    double volume = 0;
-    for (const auto& t : mesh.tets) {
-        const Vec3& a = mesh.nodes[static_cast<std::size_t>(t[0])];
-        volume += std::abs((mesh.nodes[static_cast<std::size_t>(t[1])] - a)
-                               .dot((mesh.nodes[static_cast<std::size_t>(t[2])] - a).cross(mesh.nodes[static_cast<std::size_t>(t[3])] - a))) / 6.0;
-    }
-    return volume;
-}
-
 TEST(RunLabelMap, SlicerAndNiftiGiveOneMeshThatMeetsTheTargets) {
     const fs::path dir = test::scratchDir("run-label-map");
     const std::string bin = JAWMESH_BINARY;
@@ -62,7 +52,7 @@ TEST(RunLabelMap, SlicerAndNiftiGiveOneMeshThatMeetsTheTargets) {
     std::size_t labelled = 0;
     for (const LabelSegment& s : v.segments) labelled += s.voxelCount;
     const double voxelMm3 = std::abs(v.directionsMm.determinant());
-    const double meshMm3 = meshVolumeMm3(readGmsh((dir / "out-nifti" / msh).string()));
+    const double meshMm3 = test::totalVolumeMm3(readGmsh((dir / "out-nifti" / msh).string()));
     std::cout << "mesh volume " << meshMm3 << " mm^3, labelled voxels " << labelled * voxelMm3 << " mm^3\n";
     EXPECT_NEAR(meshMm3 / (static_cast<double>(labelled) * voxelMm3), 1.0, 0.03);
 }
