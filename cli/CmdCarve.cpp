@@ -59,6 +59,7 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
         if (opt.profile.size() != 3) throw Error("--pdl-profile takes three values: cervical,mid,apical (mm)");
         co.profile = PdlProfile{opt.profile[0], opt.profile[1], opt.profile[2]};
     }
+    co = carveOptionsFor(surfaces, co, opt.voxelMm);
 
     const auto tLevel = std::chrono::steady_clock::now();
     const JawLevelSets levelSets = jawLevelSets(surfaces, *jc, opt.voxelMm, opt.bandVoxels, progress);

@@ -85,8 +85,8 @@ void addEvalCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("--tolerance", opt->eval.hausdorffToleranceMm, "Maxima (Hausdorff) exact to this, mm")
         ->check(positiveNumber())
         ->capture_default_str();
-    cmd->add_option("--pdl-target", opt->eval.pdlTargetMm, "PDL target thickness for the verdict, mm")
-        ->check(positiveNumber())
+    cmd->add_option("--pdl-target", opt->eval.pdlTargetMm, "PDL target thickness for the verdict, mm (0: measured only, e.g. a PDL kept from a label map)")
+        ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     cmd->add_option("--pdl-tolerance", opt->eval.pdlToleranceMm, "Allowed PDL deviation (p05 and p95), mm")
         ->check(nonNegativeNumber())

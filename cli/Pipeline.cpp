@@ -89,6 +89,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     StageLog log(record);
 
     std::map<int, ToothAxes> caseAxes;  // from the case; computed from the mesh when absent
+    bool pdlKept = false;               // a label map's PDL: measured in the report, not judged
     LabelField field;
     if (!options.fromVdb.empty()) {
         field = log.run(jaw + ": read label field", progress, [&] { return readLabelField(options.fromVdb); });
@@ -103,12 +104,13 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         const JawLevelSets levelSets = log.run(jaw + ": level sets", progress, [&] {
             return jawLevelSets(surfaces, jawCase, options.voxelSizeMm, options.bandVoxels, progress);
         });
-        CarveOptions carve = options.carve;
-        if (carve.axes.empty()) carve.axes = surfaces.axes;
+        pdlKept = surfaces.pdlKept;
+        const CarveOptions carve = carveOptionsFor(surfaces, options.carve, options.voxelSizeMm);
         CarveSummary summary;
         field = log.run(jaw + ": carve", progress,
                         [&] { return carveJaw(jawCase.jaw, *levelSets.bone, levelSets.teeth, carve, summary, progress); });
         for (const std::string& w : summary.warnings) record["warnings"].push_back(w);
+        record["carve"] = {{"options", toJson(carve)}, {"summary", toJson(summary)}};
         requireBoneContact(summary, jawCase, carve);
         if (options.writeLevelSets)
             log.run(jaw + ": write level sets", progress,
@@ -174,7 +176,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     });
 
     record["eval"] = log.run(jaw + ": eval", progress, [&] {
-        return runReport(mesh, jawCase, options.load, options.carve.pdlThicknessMm, outJawDir, progress);
+        return runReport(mesh, jawCase, options.load, pdlKept ? 0.0 : options.carve.pdlThicknessMm, outJawDir, progress);
     });
     record["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
     record["peak_memory_bytes"] = peakResidentMemoryBytes();

@@ -69,6 +69,9 @@ struct JawSurfaces {
     std::map<int, SurfaceMesh> teeth;     ///< by UNN
     std::map<int, ToothAxes> axes;        ///< by UNN; empty without an axes file
     std::vector<std::string> notes;       ///< things a person should know (numbering used, scaling, ...)
+    /// A label map's segmented PDL is kept: `bone` leaves it out, so it is the gap between each
+    /// root and its socket, which carving keeps (levelset/CarveGaps.h keptPdlCarveOptions).
+    bool pdlKept = false;
 };
 
 /// Reads every surface of a jaw (in parallel, TBB) and its axes; splits and numbers an all_teeth.obj

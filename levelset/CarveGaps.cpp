@@ -467,6 +467,23 @@ LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGri
     return std::move(ctx.field);
 }
 
+CarveOptions keptPdlCarveOptions(CarveOptions o, double voxelMm) {
+    // The overlap rule of evalLocal leaves a PDL of kMinPdlShare * t where the gap is thinner, and
+    // with no erosion and no bone shift it keeps every gap between that and t + the bridge.
+    o.pdlThicknessMm = kKeptPdlMinVoxels * voxelMm / kMinPdlShare;
+    o.profile.reset();
+    o.pdlRatio = 0;
+    o.boneShiftMaxMm = 0;
+    o.gapBridgeMm = std::max(o.gapBridgeMm, kKeptPdlBridgeMm);
+    o.pdlKept = true;
+    return o;
+}
+
+CarveOptions carveOptionsFor(const JawSurfaces& surfaces, CarveOptions options, double voxelMm) {
+    if (options.axes.empty()) options.axes = surfaces.axes;
+    return surfaces.pdlKept ? keptPdlCarveOptions(std::move(options), voxelMm) : options;
+}
+
 nlohmann::json toJson(const CarveOptions& o) {
     nlohmann::json j = {{"pdl_thickness_mm", o.pdlThicknessMm},
                         {"pdl_ratio", o.pdlRatio},
@@ -474,7 +491,8 @@ nlohmann::json toJson(const CarveOptions& o) {
                         {"gap_bridge_mm", o.gapBridgeMm},
                         {"bone_shift_max_mm", o.boneShiftMaxMm},
                         {"apex_taper_mm", o.apexTaperMm},
-                        {"cap_exclusion_mm", o.capExclusionMm}};
+                        {"cap_exclusion_mm", o.capExclusionMm},
+                        {"pdl", o.pdlKept ? "kept" : "generated"}};
     if (o.profile)
         j["pdl_profile_mm"] = {{"cervical", o.profile->cervical}, {"mid_root", o.profile->midRoot}, {"apical", o.profile->apical}};
     return j;

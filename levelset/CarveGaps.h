@@ -73,6 +73,7 @@ struct CarveOptions {
     double apexTaperMm = 1.0;           ///< root erosion falls to half over this length to the apex; 0 = off
     double capExclusionMm = 0.3;        ///< thickness statistics ignore points this close to the outside
     std::map<int, ToothAxes> axes;      ///< optional tooth axes (long axis for the profile)
+    bool pdlKept = false;               ///< set by keptPdlCarveOptions (recorded in summary.json)
 };
 
 struct ThicknessStats {
@@ -125,6 +126,23 @@ struct CarveSummary {
 LabelField carveJaw(Jaw jaw, const openvdb::FloatGrid& bone,
                     const std::map<int, openvdb::FloatGrid::ConstPtr>& teeth, const CarveOptions& options,
                     CarveSummary& summary, Progress& progress = noProgress());
+
+/// Thinnest kept PDL, in voxels of the carve's grid (keptPdlCarveOptions).
+constexpr double kKeptPdlMinVoxels = 2.0;
+/// Widest root-socket gap a kept PDL fills, mm: segmented PDLs are 0.1-0.5 mm thick.
+constexpr double kKeptPdlBridgeMm = 0.8;
+
+/// The options that keep a segmented PDL (JawSurfaces::pdlKept: the bone leaves it out, so it is
+/// the gap between root and socket): the rules above with no root erosion (ratio 0) and no bone
+/// shift, so the PDL is the gap as segmented, bridged up to the wider of options.gapBridgeMm and
+/// kKeptPdlBridgeMm; where the gap is thinner than kKeptPdlMinVoxels voxels (or missing: root and
+/// bone in contact) the bone gives way until the PDL is that thick. Thickness and profile of
+/// `options` are replaced; the rest (clearance, axes, cap exclusion) is kept.
+CarveOptions keptPdlCarveOptions(CarveOptions options, double voxelMm);
+
+/// The carve's options for a jaw: `options` with the jaw's axes when it gives none, turned into
+/// keptPdlCarveOptions when the jaw's label map keeps its PDL.
+CarveOptions carveOptionsFor(const JawSurfaces& surfaces, CarveOptions options, double voxelMm);
 
 /// PDL thickness (mm) at relative root position s (0 cervical, 0.5 mid-root, 1 apex), clamped.
 double pdlThicknessAt(const PdlProfile& profile, double s);

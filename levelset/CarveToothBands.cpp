@@ -139,7 +139,9 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     }
     if (overlap.empty()) return;
     openvdb::tools::dilateActiveValues(overlap, 2, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
-    const auto inside = extendInteriorDistance(bone, overlap, rules.boneShiftMax + 3 * rules.voxel);
+    // Deep enough for every point a PDL of thickness t could take (T < t, so B > g - t): with no
+    // bone shift (a kept PDL, keptPdlCarveOptions) the floor still moves the bone by up to t.
+    const auto inside = extendInteriorDistance(bone, overlap, std::max(rules.boneShiftMax, tMax) + 3 * rules.voxel);
     auto xa = t.X->getAccessor();
     for (auto it = inside->tree().cbeginValueOn(); it; ++it) xa.setValue(it.getCoord(), *it);
 }

@@ -96,13 +96,14 @@ double volumeMatchingIso(const openvdb::FloatGrid& grid, double voxels) {
     return std::clamp(iso, -0.9 * kMarginVoxels, 0.9 * kMarginVoxels);
 }
 
-/// The surface of the voxels of `mask` (see labelSurface), in world millimetres.
-SurfaceMesh maskSurface(const LabelVolume& v, const openvdb::MaskGrid& mask, int smoothingSteps) {
+/// The surface of the voxels of `mask` (see labelSurface), in world millimetres; at iso 0 unless
+/// `matchVolume` (surfacesFromLabelVolume says when not).
+SurfaceMesh maskSurface(const LabelVolume& v, const openvdb::MaskGrid& mask, int smoothingSteps, bool matchVolume) {
     if (mask.activeVoxelCount() == 0) throw Error(v.path, "a role has no voxel");
     // No closing or dilation: it would merge what the segmentation kept apart.
     const openvdb::FloatGrid::Ptr indicator = indicatorOf(mask);
     smoothWithinVoxels(*indicator, mask, smoothingSteps);
-    const double iso = volumeMatchingIso(*indicator, static_cast<double>(mask.activeVoxelCount()));
+    const double iso = matchVolume ? volumeMatchingIso(*indicator, static_cast<double>(mask.activeVoxelCount())) : 0.0;
     SurfaceMesh surface = extractLevelSetSurface(*indicator, iso);
     for (Vec3& p : surface.vertices) p = v.worldOf(p.x(), p.y(), p.z());
     // An index-to-world map that mirrors (negative determinant) turns the winding inside out.
@@ -114,18 +115,16 @@ SurfaceMesh maskSurface(const LabelVolume& v, const openvdb::MaskGrid& mask, int
 }  // namespace
 
 SurfaceMesh labelSurface(const LabelVolume& v, const std::vector<std::size_t>& segments, int smoothingSteps) {
-    return maskSurface(v, *segmentMasks(v, {segments}).front(), smoothingSteps);
+    return maskSurface(v, *segmentMasks(v, {segments}).front(), smoothingSteps, true);
 }
 
 JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment& roles, Jaw jaw, Progress& progress) {
-    if (roles.hasPdl && roles.pdl == PdlLabels::Keep)
-        throw Error(v.path, "the volume has PDL labels; keeping a segmented PDL is not supported yet: set \"pdl\": "
-                            "\"generate\" in labels.json to mesh them as bone and carve the PDL at the requested thickness");
+    const bool keepPdl = roles.hasPdl && roles.pdl == PdlLabels::Keep;
     std::vector<std::size_t> bone;
     std::map<int, std::vector<std::size_t>> teeth;
     for (std::size_t s = 0; s < roles.roles.size(); ++s) {
         const LabelRole& r = roles.roles[s];
-        if (r.kind == LabelRole::Kind::Bone || r.kind == LabelRole::Kind::Pdl) bone.push_back(s);
+        if (r.kind == LabelRole::Kind::Bone || (r.kind == LabelRole::Kind::Pdl && !keepPdl)) bone.push_back(s);
         if (r.kind == LabelRole::Kind::Tooth) teeth[r.unn].push_back(s);
     }
     std::vector<std::pair<int, std::vector<std::size_t>>> jobs{{0, bone}};
@@ -140,7 +139,10 @@ JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment&
     tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t j) {
         try {
             progress.checkCancelled();
-            surfaces[j] = maskSurface(v, *masks[j], kLabelSmoothingSteps);
+            // A kept PDL is the gap between root and socket, 2-4 voxels thick: matching the volume
+            // of the solids on both sides would move both its walls into it (4 % of the phantom's
+            // PDL, where iso 0 leaves it within 2 % and the solids within 0.5 %).
+            surfaces[j] = maskSurface(v, *masks[j], kLabelSmoothingSteps, !keepPdl);
         } catch (...) {
             errors[j] = std::current_exception();
         }
@@ -150,6 +152,7 @@ JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment&
         if (e) std::rethrow_exception(e);
     JawSurfaces out;
     out.jaw = jaw;
+    out.pdlKept = keepPdl;
     out.bone = std::move(surfaces[0]);
     for (std::size_t j = 1; j < jobs.size(); ++j) out.teeth[jobs[j].first] = std::move(surfaces[j]);
     return out;

@@ -5,10 +5,13 @@
 //    space) smoothed by `smoothingSteps` box means, each followed by putting every voxel centre
 //    back on its side (constrained smoothing), so the staircase goes while the surface stays
 //    within a voxel of the label boundary; its iso value is then set so that the surface encloses
-//    the voxels' volume (smoothing rounds convex parts inward). Extracted by volumeToMesh and
+//    the voxels' volume (smoothing rounds convex parts inward), except when a segmented PDL is
+//    kept (its walls would move into it; iso 0 keeps flat faces on the voxel faces). Extracted by volumeToMesh and
 //    mapped to world by the volume's voxel-to-world map (anisotropic and oblique spacing included).
-//  - Segmented PDL labels are meshed as bone when the PDL is regenerated (the carve then cuts the
-//    PDL at the requested thickness, as for surfaces).
+//  - Segmented PDL labels are left out of the bone when they are kept ("pdl": "keep", the
+//    default): the PDL is then the gap between each root and its socket, which carving keeps
+//    (levelset/CarveGaps.h keptPdlCarveOptions). When the PDL is regenerated they are meshed as
+//    bone, and the carve cuts the PDL at the requested thickness, as for surfaces.
 #pragma once
 
 #include "io/Case.h"
@@ -28,8 +31,8 @@ constexpr int kLabelSmoothingSteps = 2;
 SurfaceMesh labelSurface(const LabelVolume& volume, const std::vector<std::size_t>& segments,
                          int smoothingSteps = kLabelSmoothingSteps);
 
-/// Bone and tooth surfaces of a jaw's label volume under `roles` (PDL segments go to the bone
-/// when roles.pdl is Generate; Keep is refused with a message until the kept PDL is meshed).
+/// Bone and tooth surfaces of a jaw's label volume under `roles`: PDL segments go to the bone
+/// when roles.pdl is Generate, and are left out of it when kept (JawSurfaces::pdlKept).
 /// Teeth are processed in parallel (TBB), each deterministically. Throws Error naming the volume.
 JawSurfaces surfacesFromLabelVolume(const LabelVolume& volume, const LabelAssignment& roles, Jaw jaw,
                                     Progress& progress = noProgress());

@@ -258,16 +258,23 @@ Json verdict(const Json& report, const EvalOptions& o) {
         }
     }
     if (report.contains("pdl_thickness") && !report["pdl_thickness"]["teeth"].empty()) {
+        const bool judged = o.pdlTargetMm > 0;  // a PDL kept from a label map is measured only
         std::vector<std::string> off;
         for (const Json& t : report["pdl_thickness"]["teeth"]) {
             const double p05 = t["p05"].get<double>(), p95 = t["p95"].get<double>();
-            if (p05 < o.pdlTargetMm - o.pdlToleranceMm || p95 > o.pdlTargetMm + o.pdlToleranceMm)
+            if (judged && (p05 < o.pdlTargetMm - o.pdlToleranceMm || p95 > o.pdlTargetMm + o.pdlToleranceMm))
                 off.push_back(std::to_string(t["tooth"].get<int>()));
         }
         const Json& jaw = report["pdl_thickness"]["jaw"];
-        std::snprintf(buf, sizeof buf, "median %.3f mm, p05-p95 %.3f-%.3f mm (target %.3f +- %.3f)", jaw["median"].get<double>(),
-                      jaw["p05"].get<double>(), jaw["p95"].get<double>(), o.pdlTargetMm, o.pdlToleranceMm);
+        std::snprintf(buf, sizeof buf, "median %.3f mm, p05-p95 %.3f-%.3f mm", jaw["median"].get<double>(), jaw["p05"].get<double>(),
+                      jaw["p95"].get<double>());
         std::string detail = buf;
+        if (judged) {
+            std::snprintf(buf, sizeof buf, " (target %.3f +- %.3f)", o.pdlTargetMm, o.pdlToleranceMm);
+            detail += buf;
+        } else {
+            detail += " (kept as segmented: measured, no target)";
+        }
         if (!off.empty()) {
             detail += "; outside on tooth";
             for (const auto& u : off) detail += " " + u;
@@ -368,7 +375,7 @@ Json pdlThicknessReport(const std::map<Label, RegionBoundary>& boundaries, const
         for (const Json& t : teeth) maxMm = std::max(maxMm, t["max"].get<double>());
         jaw["max"] = maxMm;
         pdl["jaw"] = jaw;
-        const double hi = std::max(2.0 * o.pdlTargetMm, 1e-3);
+        const double hi = std::max({2.0 * o.pdlTargetMm, o.pdlTargetMm > 0 ? 0.0 : maxMm, 1e-3});
         pdl["histogram"] = {{"lo", 0.0}, {"hi", hi}, {"bins", o.histogramBins}, {"weights_mm2", weightedHistogram(values, weights, 0.0, hi, o.histogramBins)}};
     }
     return pdl;

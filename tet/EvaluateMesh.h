@@ -27,7 +27,7 @@ namespace jawmesh {
 struct EvalOptions {
     double sampleSpacingMm = 0.2;        ///< area samples for means and percentiles (filters/SurfaceDistance.h)
     double hausdorffToleranceMm = 0.002; ///< maxima exact to this (well below the 0.05 mm voxel)
-    double pdlTargetMm = 0.2;            ///< the PDL check: p05 and p95 within target +- tolerance
+    double pdlTargetMm = 0.2;            ///< the PDL check: p05 and p95 within target +- tolerance (0: no target, measured only)
     double pdlToleranceMm = 0.03;
     double crownToleranceMm = 0.05;      ///< the crown check: two-sided crown Hausdorff at most this
     double cervicalBandMm = 0.5;         ///< crown faces this near the root faces: the cervical band

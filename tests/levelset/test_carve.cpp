@@ -248,6 +248,34 @@ TEST(Carve, DistancesAreConsistentWithLabels) {
     EXPECT_GT(checked, 10000u);
 }
 
+// A kept PDL (a label map's, issue #23): the bone leaves the PDL out, and the carve keeps the gap.
+TEST(Carve, KeptPdlIsTheSocketGapWithATwoVoxelFloorAndTheRootUneroded) {
+    const auto& j = syntheticJaw();
+    CarveSummary s;
+    const CarveOptions o = keptPdlCarveOptions(CarveOptions(), kVoxel);
+    const LabelField f = carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s);
+    // Tooth 24's socket is 0.25 mm wider than its root: that gap is its PDL.
+    const auto& gap = toothSummary(s, 24).thickness;
+    ASSERT_GT(gap.samples, 200u);
+    EXPECT_NEAR(gap.mean, 0.25, 0.01);
+    EXPECT_GE(gap.p05, 0.22);
+    EXPECT_LE(gap.p95, 0.28);
+    // Tooth 26 fits its socket exactly: the bone gives way to a PDL of two voxels.
+    const auto& fit = toothSummary(s, 26).thickness;
+    EXPECT_NEAR(fit.mean, kKeptPdlMinVoxels * kVoxel, 0.015);
+    // No root erosion: along +y at mid-root of tooth 24, tooth to the input surface, then PDL
+    // over the gap, then bone.
+    const double r = 1.2;
+    const Vec3d axis24(-2.0, 0, -2.5);
+    EXPECT_EQ(labelAt(f, axis24 + Vec3d(0, r - kVoxel, 0)), toothLabel(24));
+    EXPECT_EQ(labelAt(f, axis24 + Vec3d(0, r + kVoxel, 0)), pdlLabel(24));
+    EXPECT_EQ(labelAt(f, axis24 + Vec3d(0, r + 0.25 - kVoxel, 0)), pdlLabel(24));
+    EXPECT_EQ(labelAt(f, axis24 + Vec3d(0, r + 0.25 + kVoxel, 0)), boneLabel(Jaw::Mandible));
+    const double capsuleMm3 = M_PI * r * r * 8.0 + 4.0 / 3.0 * M_PI * r * r * r;
+    EXPECT_NEAR(toothSummary(s, 24).toothVolumeMm3 / capsuleMm3, 1.0, 0.02);
+    EXPECT_LT(toothSummary(carvedDefault().summary, 24).toothVolumeMm3, 0.97 * capsuleMm3);  // eroded when generated
+}
+
 TEST(Carve, ProfileChangesThicknessAlongTheRoot) {
     const auto& j = syntheticJaw();
     CarveOptions o;
