@@ -61,7 +61,7 @@ Local evalLocal(const ToothWork& t, const CarveRules& rules, FloatAcc& T, FloatA
         const bool bKnown = boneKnown(B, X, c + dx) && boneKnown(B, X, c - dx) && boneKnown(B, X, c + dy) &&
                             boneKnown(B, X, c - dy) && boneKnown(B, X, c + dz) && boneKnown(B, X, c - dz);
         const double dot = (bKnown && lT > 1e-3 * rules.voxel && lB > 1e-3 * rules.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
-        gap = std::max(gap, (dot + kFacingCos) * rules.gapBridge);
+        gap = std::max(gap, (dot + rules.facingCos) * rules.gapBridge);
         // A bridged gap wider than w + boneShiftMax: the PDL moves out to meet the bone where it
         // has moved boneShiftMax, eroding the root less (and, past that, the PDL thickens).
         if (gap < 0 && g - w > rules.boneShiftMax) {
@@ -74,7 +74,7 @@ Local evalLocal(const ToothWork& t, const CarveRules& rules, FloatAcc& T, FloatA
         else if (gap < 0 && w - g > rules.boneShiftMax)
             w = std::max(g + rules.boneShiftMax, kMinPdlShare * th - e);
     }
-    const double socket = std::min(b - e, gap);  // < 0: in the socket of this tooth
+    const double socket = std::min(b - std::max(e, rules.minCapRise), gap);  // < 0: in the socket of this tooth
     // Exact ties (input bands sampled exactly at T = -e, T = w or on the cap) must land in exactly
     // one region, or they leave a void: the tooth takes T = -e and the cap, the bone takes T = w.
     r.tooth = std::max(r.T, std::min(below(r.T + e), below(-socket)));
@@ -176,6 +176,8 @@ CarveRules rulesOf(const CarveOptions& options, const FloatGrid& bone) {
     rules.gapBridge = options.gapBridgeMm;
     rules.boneShiftMax = options.boneShiftMaxMm;
     rules.apexTaper = options.apexTaperMm;
+    rules.facingCos = -std::cos(options.gapFacingDeg * M_PI / 180.0);
+    rules.minCapRise = options.minCapRiseMm;
     rules.clearance = options.clearanceVoxels * rules.voxel;
     const double eMax = rules.ratio * thicknessRangeMm(rules.profile, rules.uniformThickness).second;
     rules.far = rules.gapBridge + eMax + 2 * rules.voxel;
@@ -475,6 +477,8 @@ CarveOptions keptPdlCarveOptions(CarveOptions o, double voxelMm) {
     o.pdlRatio = 0;
     o.boneShiftMaxMm = 0;
     o.gapBridgeMm = std::max(o.gapBridgeMm, kKeptPdlBridgeMm);
+    o.gapFacingDeg = kKeptPdlFacingDeg;
+    o.minCapRiseMm = kKeptPdlMinVoxels * voxelMm;
     o.pdlKept = true;
     return o;
 }
@@ -490,6 +494,8 @@ nlohmann::json toJson(const CarveOptions& o) {
                         {"clearance_voxels", o.clearanceVoxels},
                         {"gap_bridge_mm", o.gapBridgeMm},
                         {"bone_shift_max_mm", o.boneShiftMaxMm},
+                        {"gap_facing_deg", o.gapFacingDeg},
+                        {"min_cap_rise_mm", o.minCapRiseMm},
                         {"apex_taper_mm", o.apexTaperMm},
                         {"cap_exclusion_mm", o.capExclusionMm},
                         {"pdl", o.pdlKept ? "kept" : "generated"}};

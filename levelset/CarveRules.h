@@ -21,9 +21,6 @@ using openvdb::FloatGrid;
 using openvdb::Vec3d;
 using FloatAcc = FloatGrid::ConstAccessor;
 
-/// Tooth and bone surfaces "face each other" (a gap to bridge) when their outward normals make an
-/// angle above 135 degrees.
-constexpr double kFacingCos = 0.70710678118654752;
 
 /// Thinnest and thickest PDL asked for anywhere on a root (the profile's, else the uniform one), mm.
 inline std::pair<double, double> thicknessRangeMm(const std::optional<PdlProfile>& profile, double uniformMm) {
@@ -42,6 +39,8 @@ struct CarveRules {
     double apexTaper = 1.0;
     double clearance = 0.05;
     double far = 0.7;     ///< distances beyond the gap-bridging reach are reported as this (mm)
+    double facingCos = 0.70710678118654752;  ///< -cos of CarveOptions::gapFacingDeg
+    double minCapRise = 0;                   ///< CarveOptions::minCapRiseMm
 };
 
 /// Per-tooth working data.
