@@ -2,6 +2,7 @@
 #pragma once
 
 #include "io/SurfaceMesh.h"
+#include "support/DirtySurfaces.h"
 #include "support/Icosphere.h"
 
 #include <openvdb/openvdb.h>
@@ -25,67 +26,6 @@ inline SurfaceMesh boxMesh(const Vec3& lo, const Vec3& hi) {
     for (int i = 0; i < 8; ++i) m.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
     m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                    {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-    return m;
-}
-
-inline SurfaceMesh flipped(SurfaceMesh m) {
-    for (auto& t : m.triangles) std::swap(t[1], t[2]);
-    return m;
-}
-
-/// Reverses a random half of the triangles (fixed seed).
-inline SurfaceMesh flipHalf(SurfaceMesh m, unsigned seed = 7) {
-    std::mt19937 rng(seed);
-    for (auto& t : m.triangles)
-        if (rng() & 1u) std::swap(t[1], t[2]);
-    return m;
-}
-
-/// Removes every triangle whose centroid lies within a random radius in [rMin, rMax] (mm) of
-/// `count` random surface points (triangle centroids, fixed seed); `holes`, when given, receives
-/// each hole's centre and radius.
-inline SurfaceMesh punchHoles(const SurfaceMesh& m, int count, double rMin, double rMax, unsigned seed = 11,
-                              std::vector<std::pair<Vec3, double>>* holesOut = nullptr) {
-    std::mt19937 rng(seed);
-    std::uniform_int_distribution<std::size_t> pick(0, m.triangles.size() - 1);
-    std::uniform_real_distribution<double> radius(rMin, rMax);
-    auto centroid = [&](const Tri& t) {
-        return (m.vertices[static_cast<std::size_t>(t[0])] + m.vertices[static_cast<std::size_t>(t[1])] +
-                m.vertices[static_cast<std::size_t>(t[2])]) / 3.0;
-    };
-    std::vector<std::pair<Vec3, double>> holes;
-    for (int i = 0; i < count; ++i) {
-        const Vec3 c = centroid(m.triangles[pick(rng)]);
-        holes.emplace_back(c, radius(rng));
-    }
-    SurfaceMesh out;
-    out.vertices = m.vertices;
-    for (const Tri& t : m.triangles) {
-        const Vec3 c = centroid(t);
-        const bool inHole = std::any_of(holes.begin(), holes.end(), [&](const auto& h) { return (c - h.first).norm() < h.second; });
-        if (!inHole) out.triangles.push_back(t);
-    }
-    if (holesOut) *holesOut = holes;
-    return out;
-}
-
-/// Appends copies of a random `fraction` of the triangles: half reuse the vertex indices, half
-/// get their own copies of the vertices (so only welding finds them), some reversed.
-inline SurfaceMesh duplicateFaces(SurfaceMesh m, double fraction, unsigned seed = 13) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    const std::size_t n = m.triangles.size();
-    for (std::size_t i = 0; i < n; ++i) {
-        if (u(rng) >= fraction) continue;
-        Tri t = m.triangles[i];
-        if (rng() & 1u) {
-            for (auto& v : t) {
-                m.vertices.push_back(m.vertices[static_cast<std::size_t>(v)]);
-                v = static_cast<std::int32_t>(m.vertices.size() - 1);
-            }
-        }
-        m.triangles.push_back(t);
-    }
     return m;
 }
 
