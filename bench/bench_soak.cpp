@@ -1,6 +1,7 @@
-// bench_soak <dataset> [seeds=N] [teeth=a,b,...] [variants=clean,flips,...] [scale=0.25]: writes the
-// soak dataset of issue #27, one phantom mandible case per seed x tooth count x dirty variant, named
-// <variant>-t<teeth>-s<seed>, for `jawmesh batch` to run (bench/soak.sh runs it and tabulates).
+// bench_soak <dataset> [seeds=N] [teeth=a,b,...] [variants=clean,flips,...] [scale=0.25] [case=<dir>]:
+// writes the soak dataset of issue #27, one phantom mandible case per seed x tooth count x dirty
+// variant, named <variant>-t<teeth>-s<seed>, for `jawmesh batch` to run (bench/soak.sh runs it and
+// tabulates). With case=<dir>, the variants of that real case's first jaw instead (<variant>-case).
 // Variants (tests/support/DirtySurfaces.h), each as a segmentation export would leave the surfaces:
 //   clean       the phantom as it is
 //   flips       half of every surface's triangles reversed
@@ -8,6 +9,7 @@
 //   duplicates  20 % of the triangles repeated, half of them on their own vertices, some reversed
 //   shells      every tooth with an overlapping inner shell (scaled 0.85 about its centroid)
 //   staircase   every tooth as unsmoothed voxels of 0.2 mm (binary indicator, dual contouring)
+#include "io/Case.h"
 #include "io/Error.h"
 #include "levelset/LevelSetSurface.h"
 #include "levelset/MeshToLevelSet.h"
@@ -44,6 +46,17 @@ SurfaceMesh staircase(const SurfaceMesh& m, double voxelMm) {
         for (auto v = leaf.beginValueOn(); v; ++v) v.setValue(*v < 0 ? -0.5f : 0.5f);
     });
     return extractLevelSetSurface(*grid, 0.0);
+}
+
+/// The first jaw of a case folder in the phantom's form (bone, teeth, axes), to be dirtied.
+PhantomJaw caseJaw(const std::string& caseDir) {
+    const JawSurfaces s = loadJaw(discoverCase(caseDir).jaws.at(0));
+    PhantomJaw jaw;
+    jaw.jaw = s.jaw;
+    jaw.bone = s.bone;
+    jaw.teeth = s.teeth;
+    jaw.axes = s.axes;
+    return jaw;
 }
 
 using Dirt = std::function<void(PhantomJaw&)>;
@@ -86,6 +99,7 @@ int main(int argc, char** argv) {
     int seeds = 4;
     std::vector<std::string> teeth{"1", "4", "8", "14"}, names;
     double scale = 0.25;
+    std::string realCase;
     for (const auto& [name, dirt] : variants()) names.push_back(name);
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
@@ -94,6 +108,7 @@ int main(int argc, char** argv) {
         else if (key == "teeth") teeth = splitList(value);
         else if (key == "variants") names = splitList(value);
         else if (key == "scale") scale = std::stod(value);
+        else if (key == "case") realCase = value;
         else { std::fprintf(stderr, "unknown key %s\n", key.c_str()); return 2; }
     }
     try {
@@ -102,6 +117,13 @@ int main(int argc, char** argv) {
         for (const std::string& name : names) {
             const auto dirt = variants().find(name);
             if (dirt == variants().end()) throw Error("bench_soak: unknown variant " + name);
+            if (!realCase.empty()) {
+                PhantomJaw jaw = caseJaw(realCase);
+                dirt->second(jaw);
+                writePhantomCase({jaw}, std::string(argv[1]) + "/" + name + "-case");
+                ++written;
+                continue;
+            }
             for (const std::string& count : teeth)
                 for (int seed = 1; seed <= seeds; ++seed) {
                     PhantomOptions o;
