@@ -119,6 +119,8 @@ void validate(const CarveOptions& o, const FloatGrid& bone, const std::map<int, 
     if (!(o.gapBridgeMm >= 0)) throw Error("carve: gap bridge must be >= 0 mm");
     if (!(o.boneShiftMaxMm >= 0)) throw Error("carve: bone shift must be >= 0 mm");
     if (!(o.apexTaperMm >= 0)) throw Error("carve: apex taper must be >= 0 mm");
+    if (!(o.gapFacingDeg >= 90 && o.gapFacingDeg <= 180)) throw Error("carve: the gap facing angle must be in [90, 180] degrees");
+    if (!(o.minCapRiseMm >= 0)) throw Error("carve: the cap rise must be >= 0 mm");
     const double tMin = thicknessRangeMm(o.profile, o.pdlThicknessMm).first;
     if (!(tMin > 0)) throw Error("carve: PDL thickness must be > 0 mm");
     const double voxel = uniformVoxelSizeMm(bone);

@@ -5,10 +5,11 @@
 // at the point, e = ratio * t root erosion, w = t - e socket widening):
 //  * Socket. A point is "in the socket" of tooth i when bone is within e (B < e) or when it lies in
 //    a thin gap that the segmentation left between root and socket: T + B < gapBridge with the
-//    tooth and bone surfaces facing each other (grad T . grad B < -cos 45deg). For two parallel
-//    surfaces a distance g apart, T + B = g at every point between and inside, so the test bridges
-//    gaps up to gapBridge (default 0.5 mm; the real data has up to 0.45 mm at the cervical rim)
-//    without touching the crown above a crest where bone turns away at more than 45 degrees.
+//    tooth and bone surfaces facing each other (grad T . grad B < cos gapFacingDeg, 135 degrees by
+//    default). For two parallel surfaces a distance g apart, T + B = g at every point between and
+//    inside, so the test bridges gaps up to gapBridge (default 0.5 mm; the real data has up to
+//    0.45 mm at the cervical rim) without touching the crown above a crest where bone turns away
+//    at more than 180 - gapFacingDeg degrees.
 //    Wide gaps: where T + B = g exceeds w + boneShiftMax (default 0.2 mm), the PDL moves out to
 //    w = g - boneShiftMax and e = max(0, t - w): the bone surface moves at most boneShiftMax,
 //    the root is eroded less, and only past g = t + boneShiftMax does the PDL get thicker than t.
@@ -141,9 +142,10 @@ constexpr double kKeptPdlFacingDeg = 160;
 /// The options that keep a segmented PDL (JawSurfaces::pdlKept: the bone leaves it out, so it is
 /// the gap between root and socket): the rules above with no root erosion (ratio 0) and no bone
 /// shift, so the PDL is the gap as segmented, bridged up to the wider of options.gapBridgeMm and
-/// kKeptPdlBridgeMm where the surfaces face each other within kKeptPdlFacingDeg; where the gap is thinner than kKeptPdlMinVoxels voxels (or missing: root and
-/// bone in contact) the bone gives way until the PDL is that thick. Thickness and profile of
-/// `options` are replaced; the rest (clearance, axes, cap exclusion) is kept.
+/// kKeptPdlBridgeMm where the surfaces face each other past kKeptPdlFacingDeg; where the gap is
+/// thinner than kKeptPdlMinVoxels voxels (or missing: root and bone in contact) the bone gives way
+/// until the PDL is that thick, and the cap rises that far above the bone. Thickness and profile
+/// of `options` are replaced; the rest (clearance, axes, cap exclusion) is kept.
 CarveOptions keptPdlCarveOptions(CarveOptions options, double voxelMm);
 
 /// The carve's options for a jaw: `options` with the jaw's axes when it gives none, turned into

@@ -394,6 +394,12 @@ TEST(Carve, RejectsBadOptions) {
     o = CarveOptions();
     o.apexTaperMm = std::nan("");
     EXPECT_THROW(carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s), Error);
+    o = CarveOptions();
+    o.gapFacingDeg = 60;  // would bridge surfaces that turn away from each other
+    EXPECT_THROW(carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s), Error);
+    o = CarveOptions();
+    o.minCapRiseMm = -0.05;
+    EXPECT_THROW(carveJaw(Jaw::Mandible, *j.bone, j.teeth, o, s), Error);
     auto other = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(1.0f, openvdb::Vec3f(0), 0.1f);
     auto teeth = j.teeth;
     teeth[27] = other;
