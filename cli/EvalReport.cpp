@@ -8,11 +8,13 @@
 #include "io/ReportHtml.h"
 #include "io/ResourceUsage.h"
 #include "levelset/JawInput.h"
+#include "levelset/UnionBoundary.h"
 
 #include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -49,7 +51,10 @@ struct Section {
 
 nlohmann::json writeEvalReport(const TetMesh& mesh, const JawSurfaces* input, const EvalOptions& options,
                                const std::string& dir, const std::string& title, Progress& progress) {
-    nlohmann::json report = evaluateMesh(mesh, input, options, progress);
+    // A tooth given as overlapping shells is compared with their union, not with its pulp.
+    std::optional<JawSurfaces> unions;
+    if (input) unions = toothUnionBoundaries(*input);
+    nlohmann::json report = evaluateMesh(mesh, unions ? &*unions : nullptr, options, progress);
     std::vector<Section> sections;
     if (report.contains("regions")) {
         ProgressStage stage(progress, "eval: cross-sections");

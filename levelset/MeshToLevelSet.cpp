@@ -8,6 +8,7 @@
 #include "levelset/LineWinding.h"
 #include "levelset/OrientSurface.h"
 #include "levelset/ScanlineWinding.h"
+#include "levelset/UnionBoundary.h"
 
 #include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tree/LeafManager.h>
@@ -79,20 +80,10 @@ std::vector<char> findNonBoundaryTriangles(const openvdb::FloatGrid& grid, const
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
             for (std::size_t t = r.begin(); t < r.end(); ++t) {
                 if (!internal[t]) continue;
-                const Vec3& a = surface.vertices[static_cast<std::size_t>(triangles[t][0])];
-                const Vec3& b = surface.vertices[static_cast<std::size_t>(triangles[t][1])];
-                const Vec3& c = surface.vertices[static_cast<std::size_t>(triangles[t][2])];
-                const Vec3 n = (b - a).cross(c - a).normalized() * (0.01 * voxelSizeMm);
-                const Vec3 m = (a + b + c) / 3.0;
-                int same = 0, differ = 0;
-                for (int k = 0; k < 5 && same < 2 && differ < 2; ++k) {
-                    const Vec3 d = LineWindingQuery::genericDirection(static_cast<int>(t % 64) + k);
-                    const auto front = query.windingAlongLine(m + n, d);
-                    const auto back = query.windingAlongLine(m - n, d);
-                    if (!front || !back) continue;
-                    ((*front >= 1) == (*back >= 1) ? same : differ) += 1;
-                }
-                internal[t] = same >= 2;
+                internal[t] = bothSidesAlike(query, surface.vertices[static_cast<std::size_t>(triangles[t][0])],
+                                             surface.vertices[static_cast<std::size_t>(triangles[t][1])],
+                                             surface.vertices[static_cast<std::size_t>(triangles[t][2])], 0.01 * voxelSizeMm,
+                                             static_cast<int>(t % 64));
             }
         });
     }
