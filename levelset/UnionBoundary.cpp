@@ -33,8 +33,8 @@ SurfaceMesh unionBoundary(const SurfaceMesh& mesh) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, oriented.triangles.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t t = r.begin(); t < r.end(); ++t) {
             const Tri& tri = oriented.triangles[t];
-            inner[t] = bothSidesAlike(query, oriented.vertices[static_cast<std::size_t>(tri[0])], oriented.vertices[static_cast<std::size_t>(tri[1])],
-                                      oriented.vertices[static_cast<std::size_t>(tri[2])], offsetMm, static_cast<int>(t % 64));
+            const auto corner = [&](int k) { return oriented.vertices[static_cast<std::size_t>(tri[static_cast<std::size_t>(k)])]; };
+            inner[t] = bothSidesAlike(query, corner(0), corner(1), corner(2), offsetMm, static_cast<int>(t % 64));
         }
     });
     SurfaceMesh out;
