@@ -14,7 +14,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <optional>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -47,14 +46,17 @@ struct Section {
     std::string png;
 };
 
+/// A jaw's input as the evaluation compares with it: a tooth given as overlapping shells is its
+/// shells' union, not its pulp.
+JawSurfaces evalInput(const JawCase& jawCase, const LoadOptions& load, Progress& progress) {
+    return toothUnionBoundaries(loadJawInput(jawCase, load, progress));
+}
+
 }  // namespace
 
 nlohmann::json writeEvalReport(const TetMesh& mesh, const JawSurfaces* input, const EvalOptions& options,
                                const std::string& dir, const std::string& title, Progress& progress) {
-    // A tooth given as overlapping shells is compared with their union, not with its pulp.
-    std::optional<JawSurfaces> unions;
-    if (input) unions = toothUnionBoundaries(*input);
-    nlohmann::json report = evaluateMesh(mesh, unions ? &*unions : nullptr, options, progress);
+    nlohmann::json report = evaluateMesh(mesh, input, options, progress);
     std::vector<Section> sections;
     if (report.contains("regions")) {
         ProgressStage stage(progress, "eval: cross-sections");
@@ -109,7 +111,7 @@ JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& l
     }
     const CaseInfo info = discoverCase(caseRoot.string());
     for (const JawCase& jc : info.jaws)
-        if (jc.jaw == jaw) return loadJawInput(jc, load, progress);
+        if (jc.jaw == jaw) return evalInput(jc, load, progress);
     throw Error(path, "the case has no " + jawName(jaw) + " input");
 }
 
@@ -126,7 +128,7 @@ nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const Load
                          const std::string& outJawDir, Progress& progress) {
     const auto start = std::chrono::steady_clock::now();
     try {
-        const JawSurfaces input = loadJawInput(jawCase, load, progress);
+        const JawSurfaces input = evalInput(jawCase, load, progress);
         EvalOptions options;
         options.pdlTargetMm = pdlTargetMm;
         const nlohmann::json report =

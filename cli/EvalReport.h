@@ -22,7 +22,8 @@ nlohmann::json writeEvalReport(const TetMesh& mesh, const JawSurfaces* input, co
                                const std::string& dir, const std::string& title, Progress& progress = noProgress());
 
 /// The input surfaces of a jaw for evaluation, from either a jaw folder (<case>/input/<jaw>) or a
-/// case folder (<case>; then `jaw` picks the jaw). Throws Error naming the folder when it is
+/// case folder (<case>; then `jaw` picks the jaw); a tooth given as overlapping shells comes back
+/// as their union's boundary (levelset/UnionBoundary.h). Throws Error naming the folder when it is
 /// neither or lacks that jaw, and whatever loadJawInput() throws.
 JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& load = {}, Progress& progress = noProgress());
 

@@ -89,7 +89,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     StageLog log(record);
 
     std::map<int, ToothAxes> caseAxes;  // from the case; computed from the mesh when absent
-    bool pdlKept = false;               // a label map's PDL: measured in the report, not judged
+    double reportPdlTargetMm = options.carve.pdlThicknessMm;  // 0 for a kept PDL: measured, not judged
     LabelField field;
     if (!options.fromVdb.empty()) {
         field = log.run(jaw + ": read label field", progress, [&] { return readLabelField(options.fromVdb); });
@@ -104,7 +104,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         const JawLevelSets levelSets = log.run(jaw + ": level sets", progress, [&] {
             return jawLevelSets(surfaces, jawCase, options.voxelSizeMm, options.bandVoxels, progress);
         });
-        pdlKept = surfaces.pdlKept;
+        if (surfaces.pdlKept) reportPdlTargetMm = 0.0;
         const CarveOptions carve = carveOptionsFor(surfaces, options.carve, options.voxelSizeMm);
         CarveSummary summary;
         field = log.run(jaw + ": carve", progress,
@@ -176,7 +176,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     });
 
     record["eval"] = log.run(jaw + ": eval", progress, [&] {
-        return runReport(mesh, jawCase, options.load, pdlKept ? 0.0 : options.carve.pdlThicknessMm, outJawDir, progress);
+        return runReport(mesh, jawCase, options.load, reportPdlTargetMm, outJawDir, progress);
     });
     record["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
     record["peak_memory_bytes"] = peakResidentMemoryBytes();
