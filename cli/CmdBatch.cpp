@@ -33,6 +33,7 @@ struct BatchArgs {
     std::string dataset;
     std::string outDir;
     std::string config;
+    std::string edits;
     int jobs = 0;
     double memoryGb = 0;
     bool slurm = false;
@@ -51,6 +52,7 @@ std::string absolute(const std::string& path) { return fs::absolute(path).lexica
 nlohmann::json batchOptions(const BatchArgs& args) {
     RunOptions options = defaultRunOptions();
     if (!args.config.empty()) applyRunConfig(args.config, options);
+    if (!args.edits.empty()) options.edits = readEditFile(args.edits);
     if (!options.fromVdb.empty())
         throw Error(args.config, "from_vdb names one case's level sets; it cannot apply to a whole batch");
     return runOptionsToJson(options);
@@ -221,6 +223,8 @@ void addBatchCommand(CLI::App& app, GlobalOptions& global) {
         ->check(CLI::ExistingDirectory);
     cmd->add_option("-o,--output", args->outDir, "Output folder (also where the manifest lives)");
     cmd->add_option("--config", args->config, "JSON file of run options (keys as recorded in run.json)")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--edits", args->edits, "JSON file of what-if edits applied to every case (see `jawmesh run --edits`)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--jobs", args->jobs, "Cases at once, at most (0: as many as cores); fewer when memory is short")
         ->check(nonNegativeNumber());

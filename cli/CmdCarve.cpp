@@ -12,6 +12,7 @@
 #include "levelset/CarveGaps.h"
 #include "levelset/JawInput.h"
 #include "levelset/JawLevelSets.h"
+#include "levelset/JawLevelSetsIO.h"
 #include "levelset/LabelFieldIO.h"
 #include "levelset/MeshToLevelSet.h"
 
@@ -72,6 +73,7 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     StagedFolder staged(opt.output + "/" + jawName(jaw));
     const std::string jawDir = staged.path();
     writeLabelField(field, jawDir + "/levelsets");
+    writeJawLevelSets(levelSets, jaw, co, jawDir + "/levelsets/input");  // what `jawmesh edit` carves again
     nlohmann::json j = toJson(summary);
     j["options"] = toJson(co);
     j["case"] = opt.caseDir;

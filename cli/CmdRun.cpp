@@ -17,6 +17,7 @@ struct RunCommandOptions {
     std::string jaw;
     std::string config;
     std::string fromVdb;
+    std::string edits;
     double voxelMm = 0;
     bool writeLevelSets = false;
     bool memoryCheck = true;
@@ -28,6 +29,7 @@ void runCase(const RunCommandOptions& opt, const GlobalOptions& global) {
     if (opt.voxelMm > 0) options.voxelSizeMm = opt.voxelMm;
     if (opt.writeLevelSets) options.writeLevelSets = true;
     if (!opt.fromVdb.empty()) options.fromVdb = opt.fromVdb;
+    if (!opt.edits.empty()) options.edits = readEditFile(opt.edits);
     if (opt.memoryCheck) options.memoryLimitBytes = availableMemoryBytes();
     const CaseInfo info = discoverCase(opt.caseDir);
     int ran = 0;
@@ -60,6 +62,9 @@ void addRunCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_flag("--write-levelsets", opt->writeLevelSets, "Also write the carved level sets (.vdb)");
     cmd->add_option("--from-vdb", opt->fromVdb, "Resume from a carved level-set folder (e.g. an edited one)")
         ->check(CLI::ExistingDirectory);
+    cmd->add_option("--edits", opt->edits,
+                    "JSON file of what-if edits (extract, bone_loss, pdl_thickness) applied before carving")
+        ->check(CLI::ExistingFile);
     cmd->add_flag("!--no-memory-check", opt->memoryCheck,
                   "Run even when the memory estimate exceeds the available memory");
     cmd->callback([opt, &global] { runCase(*opt, global); });

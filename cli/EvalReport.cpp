@@ -124,13 +124,30 @@ std::string caseTitle(const JawCase& jawCase) {
 }
 }  // namespace
 
-nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, double pdlTargetMm,
-                         const std::string& outJawDir, Progress& progress) {
+void judgeAgainstEdits(const nlohmann::json& history, EvalOptions& options, std::vector<int>& removedTeeth) {
+    options.edits = history;
+    for (const auto& record : history)
+        for (const auto& e : record.at("applied")) {
+            const std::string op = e.at("op");
+            if (op == "extract") {
+                const int unn = e.at("tooth").get<int>();
+                removedTeeth.push_back(unn);
+                options.toothPdlTargetMm.erase(unn);
+            } else if (op == "pdl_thickness") {
+                const int unn = e.at("tooth").get<int>();
+                const auto& p = e.at("profile_mm");
+                const double mid = p.at("mid_root").get<double>();
+                options.toothPdlTargetMm[unn] = p.at("cervical") == mid && p.at("apical") == mid ? mid : 0.0;
+            }
+        }
+}
+
+nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, const EvalOptions& options,
+                         const std::vector<int>& removedTeeth, const std::string& outJawDir, Progress& progress) {
     const auto start = std::chrono::steady_clock::now();
     try {
-        const JawSurfaces input = evalInput(jawCase, load, progress);
-        EvalOptions options;
-        options.pdlTargetMm = pdlTargetMm;
+        JawSurfaces input = evalInput(jawCase, load, progress);
+        for (int unn : removedTeeth) input.teeth.erase(unn);
         const nlohmann::json report =
             writeEvalReport(mesh, &input, options, outJawDir + "/report", caseTitle(jawCase), progress);
         return {{"status", report["verdict"]["status"]},

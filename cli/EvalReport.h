@@ -27,11 +27,17 @@ nlohmann::json writeEvalReport(const TetMesh& mesh, const JawSurfaces* input, co
 /// neither or lacks that jaw, and whatever loadJawInput() throws.
 JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& load = {}, Progress& progress = noProgress());
 
-/// End-of-run report: loads the jaw's input again (the run freed it), writes <outJawDir>/report/
-/// titled "<case folder> <jaw>", and returns the short summary that goes into run.json ("eval":
+/// What the report judges an edited jaw against (levelset/JawEdits.h's history, run.json's
+/// "edits"): extracted teeth are expected absent (added to removedTeeth), an edited PDL is judged
+/// against its own uniform thickness (a profile: measured only); the history goes into the report.
+void judgeAgainstEdits(const nlohmann::json& history, EvalOptions& options, std::vector<int>& removedTeeth);
+
+/// End-of-run report: loads the jaw's input again (the run freed it) without the teeth an edit
+/// removed (`removedTeeth`), writes <outJawDir>/report/ titled "<case folder> <jaw>", and returns the short summary that goes into run.json ("eval":
 /// verdict status and line, report path relative to outJawDir, seconds). Never throws Error: a failed report is returned as {"error": ...} so the validated
 /// mesh of the run stays the run's result. Throws Cancelled.
-nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, double pdlTargetMm,
-                         const std::string& outJawDir, Progress& progress = noProgress());
+nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, const EvalOptions& options,
+                         const std::vector<int>& removedTeeth, const std::string& outJawDir,
+                         Progress& progress = noProgress());
 
 }  // namespace jawmesh

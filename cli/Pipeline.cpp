@@ -13,7 +13,9 @@
 #include "io/AtomicFile.h"
 #include "io/StagedFolder.h"
 #include "io/VtuWriter.h"
+#include "levelset/JawEdits.h"
 #include "levelset/JawInput.h"
+#include "levelset/JawLevelSetsIO.h"
 #include "levelset/JawLevelSets.h"
 #include "levelset/LabelFieldIO.h"
 #include "tet/ElementQuality.h"
@@ -89,23 +91,34 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     StageLog log(record);
 
     std::map<int, ToothAxes> caseAxes;  // from the case; computed from the mesh when absent
-    double reportPdlTargetMm = options.carve.pdlThicknessMm;  // 0 for a kept PDL: measured, not judged
+    EvalOptions evalOptions;  // what the report judges the mesh against
+    evalOptions.pdlTargetMm = options.carve.pdlThicknessMm;
     LabelField field;
+    if (!options.fromVdb.empty() && !options.edits.edits.empty())
+        throw Error(options.edits.file, "edits apply to a case's level sets before carving, not to a carved folder "
+                                        "(--from-vdb); use `jawmesh edit` on a folder written by --write-levelsets");
     if (!options.fromVdb.empty()) {
         field = log.run(jaw + ": read label field", progress, [&] { return readLabelField(options.fromVdb); });
+        if (const auto history = readEditHistory(options.fromVdb); !history.empty()) record["edits"] = history;
     } else {
         JawSurfaces surfaces =
             log.run(jaw + ": read", progress, [&] { return loadJawInput(jawCase, options.load, progress); });
         requireMemoryFits(surfaces, options.voxelSizeMm, options.memoryLimitBytes,
                           jawCase.folder);
         caseAxes = surfaces.axes;
+        std::vector<int> inputTeeth;
+        for (const auto& [unn, tooth] : surfaces.teeth) inputTeeth.push_back(unn);
+        requireEditsFit(options.edits, inputTeeth);  // before the long stages
         record["input"] = {{"bone_triangles", surfaces.bone.triangles.size()}, {"teeth", surfaces.teeth.size()}};
         for (const std::string& note : surfaces.notes) record["notes"].push_back(note);
-        const JawLevelSets levelSets = log.run(jaw + ": level sets", progress, [&] {
+        JawLevelSets levelSets = log.run(jaw + ": level sets", progress, [&] {
             return jawLevelSets(surfaces, jawCase, options.voxelSizeMm, options.bandVoxels, progress);
         });
-        if (surfaces.pdlKept) reportPdlTargetMm = 0.0;
-        const CarveOptions carve = carveOptionsFor(surfaces, options.carve, options.voxelSizeMm);
+        if (surfaces.pdlKept) evalOptions.pdlTargetMm = 0.0;  // a kept PDL is measured, not judged
+        CarveOptions carve = carveOptionsFor(surfaces, options.carve, options.voxelSizeMm);
+        if (!options.edits.edits.empty())
+            record["edits"].push_back(
+                log.run(jaw + ": edits", progress, [&] { return applyEdits(options.edits, levelSets, carve, progress); }));
         CarveSummary summary;
         field = log.run(jaw + ": carve", progress,
                         [&] { return carveJaw(jawCase.jaw, *levelSets.bone, levelSets.teeth, carve, summary, progress); });
@@ -113,10 +126,15 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         record["carve"] = {{"options", toJson(carve)}, {"summary", toJson(summary)}};
         requireBoneContact(summary, jawCase, carve);
         if (options.writeLevelSets)
-            log.run(jaw + ": write level sets", progress,
-                    [&] { writeLabelField(field, outJawDir + "/levelsets"); });
+            log.run(jaw + ": write level sets", progress, [&] {
+                writeLabelField(field, outJawDir + "/levelsets");
+                writeJawLevelSets(levelSets, jawCase.jaw, carve, outJawDir + "/levelsets/input");
+                if (record.contains("edits")) writeEditHistory(record["edits"], outJawDir + "/levelsets");
+            });
     }
     const std::vector<int> teeth = teethInField(field);
+    std::vector<int> removedTeeth;
+    if (record.contains("edits")) judgeAgainstEdits(record["edits"], evalOptions, removedTeeth);
 
     ExtractStats extractStats;
     InterfaceComplex complex =
@@ -176,7 +194,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     });
 
     record["eval"] = log.run(jaw + ": eval", progress, [&] {
-        return runReport(mesh, jawCase, options.load, reportPdlTargetMm, outJawDir, progress);
+        return runReport(mesh, jawCase, options.load, evalOptions, removedTeeth, outJawDir, progress);
     });
     record["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
     record["peak_memory_bytes"] = peakResidentMemoryBytes();

@@ -122,6 +122,7 @@ nlohmann::json runOptionsToJson(const RunOptions& options) {
     j["from_vdb"] = o.fromVdb;
     if (o.carve.profile)
         j["pdl_profile_mm"] = {o.carve.profile->cervical, o.carve.profile->midRoot, o.carve.profile->apical};
+    if (!o.edits.edits.empty()) j["edits"] = toJson(o.edits).at("edits");
     return j;
 }
 
@@ -144,7 +145,7 @@ void applyRunConfigText(const std::string& text, const std::string& path, RunOpt
     RunOptions o = options;  // options change only when the whole file is good
     const nlohmann::json known = runOptionsToJson(o);
     for (const auto& [key, value] : j.items())
-        if (!known.contains(key) && key != "pdl_profile_mm") throw Error(path, "unknown config key '" + key + "'");
+        if (!known.contains(key) && key != "pdl_profile_mm" && key != "edits") throw Error(path, "unknown config key '" + key + "'");
     try {
         for (const auto& k : kNumberKeys) readKey(j, k.key, k.ref(o));
         readWholeKey(j, path, "surface_adaptive_levels", 0, 6, o.extract.adaptive.maxLevel);
@@ -156,6 +157,7 @@ void applyRunConfigText(const std::string& text, const std::string& path, RunOpt
             if (p.size() != 3) throw Error(path, "pdl_profile_mm needs 3 values (cervical, mid-root, apical)");
             o.carve.profile = PdlProfile{p[0], p[1], p[2]};
         }
+        if (j.contains("edits")) o.edits = parseEdits({{"edits", j.at("edits")}}, path);
     } catch (const nlohmann::json::exception& e) {
         throw Error(path, std::string("wrong value type: ") + e.what());
     }

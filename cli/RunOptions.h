@@ -5,6 +5,7 @@
 #include "filters/ExtractInterfaces.h"
 #include "filters/SimplifyInterfaces.h"
 #include "io/Case.h"
+#include "io/Edits.h"
 #include "levelset/CarveGaps.h"
 #include "tet/Tetrahedralize.h"
 
@@ -25,6 +26,7 @@ struct RunOptions {
     TetOptions tet;
     bool writeLevelSets = false;   ///< also write <out>/<jaw>/levelsets/*.vdb
     std::string fromVdb;           ///< resume from a carved label field folder instead of surfaces
+    EditList edits;                ///< what-ifs applied before carving (levelset/JawEdits.h); none when empty
     /// Refuse the jaw up front when its memory estimate (batch/MemoryEstimate.h) exceeds this many
     /// bytes; 0: no check. Where the run happens, not what it computes: not in runOptionsToJson.
     std::uint64_t memoryLimitBytes = 0;

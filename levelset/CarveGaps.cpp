@@ -45,7 +45,7 @@ Local evalLocal(const ToothWork& t, const CarveRules& rules, FloatAcc& T, FloatA
     r.T = T.getValue(c);
     const double b = signedBone(B, X, rules, c);
     const double h = heightOf(t, xf.indexToWorld(c));
-    const double th = thicknessAt(t, rules, h);
+    const double th = thicknessAt(t, h);
     double e = rules.ratio * th * erosionShare(t, rules, h), w = th - e;
     const double g = r.T + b;  // root-socket gap where the surfaces face each other (file comment)
     double gap = g - rules.gapBridge;
@@ -121,7 +121,7 @@ void validate(const CarveOptions& o, const FloatGrid& bone, const std::map<int, 
     if (!(o.apexTaperMm >= 0)) throw Error("carve: apex taper must be >= 0 mm");
     if (!(o.gapFacingDeg >= 90 && o.gapFacingDeg <= 180)) throw Error("carve: the gap facing angle must be in [90, 180] degrees");
     if (!(o.minCapRiseMm >= 0)) throw Error("carve: the cap rise must be >= 0 mm");
-    const double tMin = thicknessRangeMm(o.profile, o.pdlThicknessMm).first;
+    const double tMin = thicknessRangeMm(o).first;
     if (!(tMin > 0)) throw Error("carve: PDL thickness must be > 0 mm");
     const double voxel = uniformVoxelSizeMm(bone);
     bandHalfWidthMm(bone);
@@ -181,7 +181,8 @@ CarveRules rulesOf(const CarveOptions& options, const FloatGrid& bone) {
     rules.facingCos = -std::cos(options.gapFacingDeg * M_PI / 180.0);
     rules.minCapRise = options.minCapRiseMm;
     rules.clearance = options.clearanceVoxels * rules.voxel;
-    const double eMax = rules.ratio * thicknessRangeMm(rules.profile, rules.uniformThickness).second;
+    rules.maxThickness = thicknessRangeMm(options).second;
+    const double eMax = rules.ratio * rules.maxThickness;
     rules.far = rules.gapBridge + eMax + 2 * rules.voxel;
     return rules;
 }
@@ -190,8 +191,7 @@ CarveRules rulesOf(const CarveOptions& options, const FloatGrid& bone) {
 /// bridged. The band must hold the PDL rules: e inside, w + clearance outside (for the bisector).
 void prepareTeeth(CarveContext& ctx, const std::map<int, FloatGrid::ConstPtr>& teethIn) {
     const CarveRules& rules = ctx.rules;
-    const double tMax = thicknessRangeMm(rules.profile, rules.uniformThickness).second;
-    const double eMax = rules.ratio * tMax, wMax = tMax - eMax;
+    const double eMax = rules.ratio * rules.maxThickness, wMax = rules.maxThickness - eMax;
     const double exVoxels = std::ceil((wMax + rules.clearance) / rules.voxel - 1e-9);
     const double inVoxels = std::ceil(eMax / rules.voxel - 1e-9);
     ctx.teeth.resize(teethIn.size());
@@ -204,6 +204,14 @@ void prepareTeeth(CarveContext& ctx, const std::map<int, FloatGrid::ConstPtr>& t
         t.unn = in[i].first;
         t.toothL = toothLabel(t.unn);
         t.pdlL = pdlLabel(t.unn);
+        t.profile = rules.profile;
+        t.uniformThickness = rules.uniformThickness;
+        if (const auto own = ctx.options.toothPdl.find(t.unn); own != ctx.options.toothPdl.end()) {
+            const PdlProfile& p = own->second;
+            const bool uniform = p.cervical == p.midRoot && p.apical == p.midRoot;
+            t.profile = uniform ? std::nullopt : std::optional(p);
+            t.uniformThickness = p.midRoot;
+        }
         prepareTooth(t, *in[i].second, ctx.bone, rules, std::max(exVoxels, 1.0), std::max(inVoxels, 1.0), ctx.options);
         stage.update(double(++done) / double(in.size()));
     });
@@ -432,7 +440,7 @@ void measureTeeth(CarveContext& ctx) {
             summary.warnings.push_back("tooth " + std::to_string(t.unn) + " has no bone contact: no PDL");
         else if (s.impacted)
             summary.warnings.push_back("tooth " + std::to_string(t.unn) + " is fully inside bone: closed PDL envelope");
-        if (ctx.rules.profile && !t.hasRoot)
+        if (t.profile && !t.hasRoot)
             summary.warnings.push_back("tooth " + std::to_string(t.unn) +
                                        ": no root found for the thickness profile; uniform mid-root value used");
         summary.teeth.push_back(s);
@@ -501,9 +509,37 @@ nlohmann::json toJson(const CarveOptions& o) {
                         {"apex_taper_mm", o.apexTaperMm},
                         {"cap_exclusion_mm", o.capExclusionMm},
                         {"pdl", o.pdlKept ? "kept" : "generated"}};
-    if (o.profile)
-        j["pdl_profile_mm"] = {{"cervical", o.profile->cervical}, {"mid_root", o.profile->midRoot}, {"apical", o.profile->apical}};
+    const auto profileJson = [](const PdlProfile& p) {
+        return nlohmann::json{{"cervical", p.cervical}, {"mid_root", p.midRoot}, {"apical", p.apical}};
+    };
+    if (o.profile) j["pdl_profile_mm"] = profileJson(*o.profile);
+    for (const auto& [unn, p] : o.toothPdl) j["tooth_pdl_mm"][std::to_string(unn)] = profileJson(p);
     return j;
+}
+
+CarveOptions carveOptionsFromJson(const nlohmann::json& j, const std::string& name) {
+    const auto profileOf = [](const nlohmann::json& p) {
+        return PdlProfile{p.at("cervical").get<double>(), p.at("mid_root").get<double>(), p.at("apical").get<double>()};
+    };
+    try {
+        CarveOptions o;
+        o.pdlThicknessMm = j.at("pdl_thickness_mm").get<double>();
+        o.pdlRatio = j.at("pdl_ratio").get<double>();
+        o.clearanceVoxels = j.at("clearance_voxels").get<double>();
+        o.gapBridgeMm = j.at("gap_bridge_mm").get<double>();
+        o.boneShiftMaxMm = j.at("bone_shift_max_mm").get<double>();
+        o.gapFacingDeg = j.at("gap_facing_deg").get<double>();
+        o.minCapRiseMm = j.at("min_cap_rise_mm").get<double>();
+        o.apexTaperMm = j.at("apex_taper_mm").get<double>();
+        o.capExclusionMm = j.at("cap_exclusion_mm").get<double>();
+        o.pdlKept = j.at("pdl").get<std::string>() == "kept";
+        if (j.contains("pdl_profile_mm")) o.profile = profileOf(j.at("pdl_profile_mm"));
+        if (j.contains("tooth_pdl_mm"))
+            for (const auto& [unn, p] : j.at("tooth_pdl_mm").items()) o.toothPdl[std::stoi(unn)] = profileOf(p);
+        return o;
+    } catch (const std::exception& e) {
+        throw Error(name, std::string("carve options: ") + e.what());
+    }
 }
 
 nlohmann::json toJson(const CarveSummary& s) {

@@ -75,6 +75,7 @@ struct CarveOptions {
     double minCapRiseMm = 0;            ///< the PDL's cap {B = e} rises at least this far above the bone (kept PDL: e = 0)
     double apexTaperMm = 1.0;           ///< root erosion falls to half over this length to the apex; 0 = off
     double capExclusionMm = 0.3;        ///< thickness statistics ignore points this close to the outside
+    std::map<int, PdlProfile> toothPdl; ///< a tooth's own PDL (UNN -> profile; uniform: three equal values)
     std::map<int, ToothAxes> axes;      ///< optional tooth axes (long axis for the profile)
     bool pdlKept = false;               ///< set by keptPdlCarveOptions (recorded in summary.json)
 };
@@ -157,6 +158,10 @@ double pdlThicknessAt(const PdlProfile& profile, double s);
 
 /// The options as summary.json records them (mm, voxels).
 nlohmann::json toJson(const CarveOptions& options);
+
+/// The options back from toJson's form (axes are not part of it). Throws Error naming `name`
+/// for a missing key or a wrong value type.
+CarveOptions carveOptionsFromJson(const nlohmann::json& j, const std::string& name);
 
 /// Per-tooth measurements (volumes mm^3, thickness statistics mm), clearance, contacts, warnings
 /// and carve_seconds, as summary.json records them.

@@ -29,11 +29,22 @@ inline std::pair<double, double> thicknessRangeMm(const std::optional<PdlProfile
             std::max({profile->cervical, profile->midRoot, profile->apical})};
 }
 
+/// The same over the jaw's PDL and every tooth's own (CarveOptions::toothPdl).
+inline std::pair<double, double> thicknessRangeMm(const CarveOptions& o) {
+    auto range = thicknessRangeMm(o.profile, o.pdlThicknessMm);
+    for (const auto& [unn, p] : o.toothPdl) {
+        const auto r = thicknessRangeMm(p, p.midRoot);
+        range = {std::min(range.first, r.first), std::max(range.second, r.second)};
+    }
+    return range;
+}
+
 struct CarveRules {
     double voxel = 0.05;
     double ratio = 0.5;
-    double uniformThickness = 0.2;
+    double uniformThickness = 0.2;      ///< the jaw's PDL (ToothWork holds each tooth's)
     std::optional<PdlProfile> profile;
+    double maxThickness = 0.2;          ///< thickest PDL on any tooth (bands, reach)
     double gapBridge = 0.5;
     double boneShiftMax = 0.2;
     double apexTaper = 1.0;
@@ -52,6 +63,8 @@ struct ToothWork {
     FloatGrid::Ptr X;        ///< bone distance off the bone band where this tooth is within reach:
                              ///< outside (gaps) and inside down to boneShiftMax (overlaps)
     CoordBBox box;           ///< index bounds of T's active voxels
+    double uniformThickness = 0.2;      ///< this tooth's PDL: the jaw's, or CarveOptions::toothPdl's
+    std::optional<PdlProfile> profile;  ///< (uniformThickness is then the profile's mid-root value)
     bool hasRoot = false;    ///< axis, cervical and apical heights found (fitRootAxis)
     Vec3d origin{0, 0, 0}, axis{0, 0, 1};  ///< axis points from the root to the crown
     double hCervical = 0, hApex = 0;
@@ -61,10 +74,10 @@ struct ToothWork {
 inline double heightOf(const ToothWork& t, const Vec3d& world) { return (world - t.origin).dot(t.axis); }
 
 /// PDL thickness at height h (heightOf) on the tooth's axis.
-inline double thicknessAt(const ToothWork& t, const CarveRules& rules, double h) {
-    if (!rules.profile || !t.hasRoot) return rules.uniformThickness;
+inline double thicknessAt(const ToothWork& t, double h) {
+    if (!t.profile || !t.hasRoot) return t.uniformThickness;
     const double s = (t.hCervical - h) / std::max(t.hCervical - t.hApex, 1e-6);
-    return pdlThicknessAt(*rules.profile, s);
+    return pdlThicknessAt(*t.profile, s);
 }
 
 /// Share of the root erosion applied at a point: 1 except over the last apexTaper mm to the apex,

@@ -3,8 +3,8 @@
 #include "levelset/CarveRules.h"
 
 #include "levelset/Csg.h"
+#include "levelset/ToothLongAxis.h"
 
-#include <Eigen/Eigenvalues>
 #include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/Morphology.h>
 
@@ -22,7 +22,7 @@ void fitRootAxis(ToothWork& t, const CarveRules& rules, const FloatGrid& bone, c
     auto T = t.T->getConstAccessor();
     auto X = t.X->getConstAccessor();
     auto B = bone.getConstAccessor();
-    const double eCervical = rules.ratio * (rules.profile ? rules.profile->cervical : rules.uniformThickness);
+    const double eCervical = rules.ratio * (t.profile ? t.profile->cervical : t.uniformThickness);
     for (auto it = t.T->tree().cbeginValueOn(); it; ++it) {
         const double v = *it;
         if (v >= 0 || v < -2 * rules.voxel) continue;
@@ -30,31 +30,10 @@ void fitRootAxis(ToothWork& t, const CarveRules& rules, const FloatGrid& bone, c
         contact.push_back(signedBone(B, X, rules, it.getCoord()) < eCervical + rules.voxel);
     }
     if (surface.empty()) return;
-    Vec3d mean(0, 0, 0);
-    for (const auto& p : surface) mean += p;
-    mean /= double(surface.size());
-    const auto axes = options.axes.find(t.unn);
-    if (axes != options.axes.end()) {
-        t.origin = Vec3d(axes->second.crownCentre.x(), axes->second.crownCentre.y(), axes->second.crownCentre.z());
-        const auto& a = axes->second.occlusal;
-        t.axis = Vec3d(a.x(), a.y(), a.z()).unit();
-    } else {
-        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-        for (const auto& p : surface) {
-            const Eigen::Vector3d d(p[0] - mean[0], p[1] - mean[1], p[2] - mean[2]);
-            cov += d * d.transpose();
-        }
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
-        const Eigen::Vector3d a = es.eigenvectors().col(2);
-        t.origin = mean;
-        t.axis = Vec3d(a.x(), a.y(), a.z());
-        // Orient towards the crown: the root (bone contact) lies on the negative side.
-        double hc = 0;
-        std::size_t nc = 0;
-        for (std::size_t i = 0; i < surface.size(); ++i)
-            if (contact[i]) hc += heightOf(t, surface[i]), ++nc;
-        if (nc && hc / double(nc) > 0) t.axis = -t.axis;
-    }
+    const auto given = options.axes.find(t.unn);
+    const LongAxis axis = toothLongAxis(surface, contact, given != options.axes.end() ? &given->second : nullptr);
+    t.origin = axis.origin;
+    t.axis = axis.axis;
     std::vector<double> hContact;
     t.hApex = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < surface.size(); ++i) {
@@ -89,7 +68,7 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     if (reach > 0)
         openvdb::tools::dilateActiveValues(near, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
     // Bone distances are not needed deeper in the tooth than e (there it is tooth whatever B is).
-    const double eMax = rules.ratio * thicknessRangeMm(rules.profile, rules.uniformThickness).second;
+    const double eMax = rules.ratio * thicknessRangeMm(t.profile, t.uniformThickness).second;
     {
         const float deep = float(-(eMax + rules.voxel));
         auto ta = T->getConstAccessor();
@@ -128,7 +107,7 @@ void prepareTooth(ToothWork& t, const FloatGrid& tooth, const FloatGrid& bone, c
     // band, and its gradient a voxel farther, but only around band voxels where the overlap
     // (T + B, with B clamped: an upper bound) is already deeper than the least one the rule acts
     // on (boneShiftMax - w, w at most t - e / 2 at the apex), two voxels beyond for the gradient.
-    const auto [tMin, tMax] = thicknessRangeMm(rules.profile, rules.uniformThickness);
+    const auto [tMin, tMax] = thicknessRangeMm(t.profile, t.uniformThickness);
     const double gTrigger = tMax - kApexErosionShare * rules.ratio * tMin - rules.boneShiftMax;
     openvdb::MaskTree overlap(false);
     {

@@ -3,7 +3,9 @@
 
 #include "io/Error.h"
 
+#include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/Composite.h>
+#include <openvdb/tools/Morphology.h>
 #include <openvdb/tools/LevelSetRebuild.h>
 
 #include <algorithm>
@@ -39,6 +41,21 @@ double uniformVoxelSizeMm(const openvdb::FloatGrid& grid) {
     if (!grid.transform().hasUniformScale())
         throw Error("level set '" + grid.getName() + "' has a non-uniform transform");
     return grid.voxelSize()[0];
+}
+
+openvdb::FloatGrid::Ptr withExteriorReach(const openvdb::FloatGrid& grid, double reachMm) {
+    const double voxel = uniformVoxelSizeMm(grid);
+    const double band = bandHalfWidthMm(grid);
+    auto out = grid.deepCopy();
+    if (reachMm <= band) return out;
+    openvdb::MaskTree region(grid.tree(), false, openvdb::TopologyCopy());
+    openvdb::tools::dilateActiveValues(region, int(std::ceil((reachMm - band) / voxel)) + 1,
+                                       openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
+    const auto far = extendExteriorDistance(grid, region, reachMm);
+    openvdb::tools::changeLevelSetBackground(out->tree(), float(reachMm));
+    auto acc = out->getAccessor();
+    for (auto it = far->tree().cbeginValueOn(); it; ++it) acc.setValue(it.getCoord(), *it);
+    return out;
 }
 
 double bandHalfWidthMm(const openvdb::FloatGrid& grid) {

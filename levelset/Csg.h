@@ -85,6 +85,12 @@ openvdb::FloatGrid::Ptr extendExteriorDistance(const openvdb::FloatGrid& grid, c
 openvdb::FloatGrid::Ptr extendInteriorDistance(const openvdb::FloatGrid& grid, const openvdb::MaskTree& region,
                                                double maxDistanceMm);
 
+/// A copy of a level set whose exterior distances reach reachMm: the band, and beyond it
+/// extendExteriorDistance over the voxels within reach (same errors); the background becomes
+/// reachMm (inactive values +-reachMm). What a dilation needs when only its sign and the distance
+/// near its surface matter, at a fraction of offsetLevelSet's cost. Throws as extendExteriorDistance.
+openvdb::FloatGrid::Ptr withExteriorReach(const openvdb::FloatGrid& grid, double reachMm);
+
 /// Half width of the band of a level set in mm (its background value). Throws Error when the grid
 /// has a non-positive background (not a level set).
 double bandHalfWidthMm(const openvdb::FloatGrid& grid);

@@ -3,6 +3,7 @@
 
 #include "io/AtomicFile.h"
 #include "io/Error.h"
+#include "levelset/VdbFile.h"
 
 #include <openvdb/io/File.h>
 
@@ -11,27 +12,6 @@
 
 namespace jawmesh {
 namespace {
-
-void writeGrid(openvdb::GridBase::Ptr grid, const std::string& path) {
-    writeFileAtomicallyByName(path, [&](const std::string& tmp) {
-        openvdb::io::File file(tmp);
-        file.write(openvdb::GridPtrVec{grid});
-        file.close();
-    });
-}
-
-openvdb::GridBase::Ptr readOnlyGrid(const std::string& path) {
-    try {
-        openvdb::io::File file(path);
-        file.open();
-        auto grids = file.getGrids();
-        file.close();
-        if (!grids || grids->size() != 1) throw Error(path, "expected exactly one grid");
-        return grids->front();
-    } catch (const openvdb::Exception& e) {
-        throw Error(path, std::string("cannot read OpenVDB file: ") + e.what());
-    }
-}
 
 /// An edited folder must keep labels and distance grids together: a region with voxels and no
 /// distance grid would lose its sub-voxel placement, a tooth or bone grid without voxels would be a
@@ -74,13 +54,13 @@ void writeLabelField(const LabelField& field, const std::string& dir) {
     labels->setName("labels");
     labels->insertMeta("jaw", openvdb::StringMetadata(jawName(field.jaw)));
     labels->insertMeta("voxel_size_mm", openvdb::DoubleMetadata(field.voxelSizeMm));
-    writeGrid(labels, dir + "/labels.vdb");
+    writeGridFile(labels, dir + "/labels.vdb");
     for (const auto& [label, grid] : field.distances) {
         if (!grid) continue;
         auto g = grid->copyGrid();
         g->setName(labelName(label));
         g->insertMeta("label", openvdb::Int32Metadata(label));
-        writeGrid(g, dir + "/" + labelName(label) + ".vdb");
+        writeGridFile(g, dir + "/" + labelName(label) + ".vdb");
     }
 }
 
@@ -89,14 +69,14 @@ LabelField readLabelField(const std::string& dir) {
     const std::string labelsPath = dir + "/labels.vdb";
     if (!std::filesystem::exists(labelsPath)) throw Error(labelsPath, "missing (not a carved label field folder)");
     LabelField field;
-    field.labels = openvdb::gridPtrCast<openvdb::Int32Grid>(readOnlyGrid(labelsPath));
+    field.labels = openvdb::gridPtrCast<openvdb::Int32Grid>(readGridFile(labelsPath));
     if (!field.labels) throw Error(labelsPath, "label grid is not an Int32 grid");
     if (auto jaw = field.labels->getMetadata<openvdb::StringMetadata>("jaw")) field.jaw = jawFromName(jaw->value());
     field.voxelSizeMm = field.labels->voxelSize()[0];
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
         const auto path = entry.path();
         if (path.extension() != ".vdb" || path.filename() == "labels.vdb") continue;
-        auto base = readOnlyGrid(path.string());
+        auto base = readGridFile(path.string());
         auto label = base->getMetadata<openvdb::Int32Metadata>("label");
         if (!label) continue;
         auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);

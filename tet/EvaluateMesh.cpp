@@ -261,9 +261,12 @@ Json verdict(const Json& report, const EvalOptions& o) {
         const bool judged = o.pdlTargetMm > 0;  // a PDL kept from a label map is measured only
         std::vector<std::string> off;
         for (const Json& t : report["pdl_thickness"]["teeth"]) {
+            const int unn = t["tooth"].get<int>();
+            const auto own = o.toothPdlTargetMm.find(unn);
+            const double target = own != o.toothPdlTargetMm.end() ? own->second : o.pdlTargetMm;
             const double p05 = t["p05"].get<double>(), p95 = t["p95"].get<double>();
-            if (judged && (p05 < o.pdlTargetMm - o.pdlToleranceMm || p95 > o.pdlTargetMm + o.pdlToleranceMm))
-                off.push_back(std::to_string(t["tooth"].get<int>()));
+            if (target > 0 && (p05 < target - o.pdlToleranceMm || p95 > target + o.pdlToleranceMm))
+                off.push_back(std::to_string(unn));
         }
         const Json& jaw = report["pdl_thickness"]["jaw"];
         std::snprintf(buf, sizeof buf, "median %.3f mm, p05-p95 %.3f-%.3f mm", jaw["median"].get<double>(), jaw["p05"].get<double>(),
@@ -274,6 +277,11 @@ Json verdict(const Json& report, const EvalOptions& o) {
             detail += buf;
         } else {
             detail += " (kept as segmented: measured, no target)";
+        }
+        for (const auto& [unn, target] : o.toothPdlTargetMm) {
+            if (target > 0) std::snprintf(buf, sizeof buf, "; tooth %d edited to %.3f", unn, target);
+            else std::snprintf(buf, sizeof buf, "; tooth %d edited to a profile: measured, no target", unn);
+            detail += buf;
         }
         if (!off.empty()) {
             detail += "; outside on tooth";
@@ -424,6 +432,8 @@ nlohmann::json evaluateMesh(const TetMesh& mesh, const JawSurfaces* input, const
                          {"pdl_target_mm", o.pdlTargetMm},        {"pdl_tolerance_mm", o.pdlToleranceMm},
                          {"crown_tolerance_mm", o.crownToleranceMm}, {"cervical_band_mm", o.cervicalBandMm},
                          {"min_dihedral_deg", o.minDihedralDeg}};
+    for (const auto& [unn, target] : o.toothPdlTargetMm) report["options"]["tooth_pdl_target_mm"][std::to_string(unn)] = target;
+    if (!o.edits.is_null()) report["edits"] = o.edits;
     report["mesh"] = {{"nodes", mesh.nodes.size()}, {"tets", mesh.tets.size()}};
 
     std::vector<int> inputTeeth;

@@ -22,6 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
+
 namespace jawmesh {
 
 struct EvalOptions {
@@ -29,10 +31,12 @@ struct EvalOptions {
     double hausdorffToleranceMm = 0.002; ///< maxima exact to this (well below the 0.05 mm voxel)
     double pdlTargetMm = 0.2;            ///< the PDL check: p05 and p95 within target +- tolerance (0: no target, measured only)
     double pdlToleranceMm = 0.03;
+    std::map<int, double> toothPdlTargetMm; ///< a tooth's own target (an edited PDL; 0: measured only)
     double crownToleranceMm = 0.05;      ///< the crown check: two-sided crown Hausdorff at most this
     double cervicalBandMm = 0.5;         ///< crown faces this near the root faces: the cervical band
     double minDihedralDeg = 10.0;        ///< the quality check
     int histogramBins = 40;
+    nlohmann::json edits;                ///< the run's edits as run.json records them, copied into the report
 };
 
 /// Measures `mesh` and, when `input` is given (the jaw's input surfaces), its distance to them.

@@ -1,66 +1,50 @@
-// Worked example of editing carved level sets (issue #3, examples/edit_levelsets/README.md):
-// remove one tooth as after an extraction, leaving its socket empty, then let jawmesh continue
-// from the edited grids with `jawmesh run <case> --from-vdb <edited>`.
-//
-// It uses OpenVDB alone, as any grid editor would; the folder's contract is in docs/DESIGN.md:
-//   labels.vdb      Int32 grid, one label per voxel: 0 outside, bone, 100 + UNN tooth, 200 + UNN PDL
-//   <region>.vdb    FloatGrid signed distance of one region (metadata "label"), e.g. tooth_24.vdb
-// An edit must keep the two consistent: a region's voxels and its distance grid go together.
+// Worked example of a clinical what-if through jawmesh's library (issue #24,
+// examples/edit_levelsets/README.md): extract one tooth from a carved jaw, leaving its socket empty
+// or healed, carve again and write a level-set folder that `jawmesh run <case> --from-vdb` meshes.
+// The same as `jawmesh edit <levelsets> --edits <file> -o <out>` with one extract edit; a program
+// of your own can build any edit list this way (levelset/JawEdits.h, io/Edits.h).
+#include "io/Edits.h"
+#include "io/Error.h"
+#include "io/StagedFolder.h"
+#include "levelset/JawEdits.h"
+#include "levelset/JawLevelSetsIO.h"
+#include "levelset/LabelFieldIO.h"
+
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Prune.h>
 
 #include <filesystem>
 #include <iostream>
 #include <string>
 
 namespace fs = std::filesystem;
+using namespace jawmesh;
 
 int main(int argc, char** argv) {
-    if (argc != 4) {
-        std::cerr << "usage: remove_tooth <carved levelsets dir> <tooth UNN> <output dir>\n";
+    const bool healed = argc == 5 && std::string(argv[4]) == "--healed";
+    if (argc != 4 && !healed) {
+        std::cerr << "usage: remove_tooth <levelsets dir> <tooth UNN> <output dir> [--healed]\n";
         return 2;
     }
-    const fs::path in = argv[1], out = argv[3];
-    const int unn = std::atoi(argv[2]);
-    const int toothLabel = 100 + unn, pdlLabel = 200 + unn;
+    const std::string in = argv[1], out = argv[3];
     try {
         openvdb::initialize();
-        openvdb::io::File labelsFile((in / "labels.vdb").string());
-        labelsFile.open();
-        const openvdb::GridPtrVecPtr grids = labelsFile.getGrids();
-        const openvdb::MetaMap::Ptr fileMeta = labelsFile.getMetadata();
-        labelsFile.close();
-        auto labels = openvdb::gridPtrCast<openvdb::Int32Grid>(grids->front());
-        if (!labels) throw std::runtime_error((in / "labels.vdb").string() + ": not an Int32 label grid");
-
-        // The tooth and its PDL become outside (0): an empty socket. Tiles (blocks of one label
-        // inside a large region) are visited too, as one value each.
-        openvdb::Index64 removed = 0;
-        for (auto it = labels->tree().beginValueAll(); it; ++it)
-            if (*it == toothLabel || *it == pdlLabel) {
-                removed += it.getVoxelCount();
-                it.setValue(0);
-            }
-        if (removed == 0) throw std::runtime_error((in / "labels.vdb").string() + ": no voxel of tooth " + argv[2]);
-        openvdb::tools::prune(labels->tree());
-
+        if (fs::exists(out)) throw Error(out, "exists already; choose a new folder");
+        // The edit, as an edit file would give it.
+        const nlohmann::json entry = {{"op", "extract"}, {"tooth", std::stoi(argv[2])}, {"socket", healed ? "healed" : "empty"}};
+        const EditList edits = parseEdits({{"edits", {entry}}}, "remove_tooth");
+        // The level sets carving started from, edited, carved again.
+        StoredJawLevelSets jaw = readJawLevelSets(in + "/input");
+        nlohmann::json history = readEditHistory(in);
+        history.push_back(applyEdits(edits, jaw.levelSets, jaw.carve));
+        CarveSummary summary;
+        const LabelField field = carveJaw(jaw.jaw, *jaw.levelSets.bone, jaw.levelSets.teeth, jaw.carve, summary);
         // Everything goes to a staging folder renamed at the end: no half-written result.
-        if (fs::exists(out)) throw std::runtime_error(out.string() + ": exists already; choose a new folder");
-        const fs::path stage = out.string() + ".partial";
-        fs::remove_all(stage);
-        fs::create_directories(stage);
-        openvdb::io::File((stage / "labels.vdb").string()).write(*grids, *fileMeta);
-        // The distance grids of the removed regions go; the bone's zero level already runs along
-        // the socket wall (the bone side of the PDL), so the bone grid stays as it is.
-        const std::string gone[2] = {"tooth_" + std::to_string(unn) + ".vdb", "pdl_" + std::to_string(unn) + ".vdb"};
-        for (const auto& entry : fs::directory_iterator(in)) {
-            const std::string name = entry.path().filename().string();
-            if (entry.path().extension() != ".vdb" || name == "labels.vdb" || name == gone[0] || name == gone[1]) continue;
-            fs::copy_file(entry.path(), stage / name);
-        }
-        fs::rename(stage, out);
-        std::cout << "removed tooth " << unn << " and its PDL: " << removed << " voxels now outside; grids in " << out.string()
-                  << "\n";
+        StagedFolder staged(out);
+        writeLabelField(field, staged.path());
+        writeJawLevelSets(jaw.levelSets, jaw.jaw, jaw.carve, staged.path() + "/input");
+        writeEditHistory(history, staged.path());
+        staged.commit(StagedFolder::Mode::Replace);
+        std::cout << "extracted tooth " << argv[2] << " (socket " << entry["socket"].get<std::string>() << "); grids in " << out << "\n";
     } catch (const std::exception& e) {
         std::cerr << "remove_tooth: " << e.what() << "\n";
         return 1;

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -190,6 +191,50 @@ void expectRunMeetsTargets(const RunFigures& f, const std::vector<int>& teeth, d
         EXPECT_LE(f.toothHausdorffMm.at(u), toothBoundMm) << "tooth " << u;
     }
     EXPECT_LE(f.boneHausdorffMm, boneBoundMm);
+}
+
+namespace {
+
+double tetVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    return std::abs((b - a).cross(c - a).dot(d - a)) / 6.0;
+}
+
+/// The part of tet p where the signed heights h are negative (exact: a tet, a prism or the rest).
+double clippedVolume(const std::array<Vec3, 4>& p, const std::array<double, 4>& h) {
+    std::vector<int> below, above;
+    for (int i = 0; i < 4; ++i) (h[i] < 0 ? below : above).push_back(i);
+    const double whole = tetVolume(p[0], p[1], p[2], p[3]);
+    const auto cut = [&](int i, int j) { return p[i] + (p[j] - p[i]) * (h[i] / (h[i] - h[j])); };
+    if (below.empty()) return 0;
+    if (above.empty()) return whole;
+    if (below.size() == 1 || above.size() == 1) {
+        const bool one = below.size() == 1;
+        const int tip = one ? below[0] : above[0];
+        const auto& rest = one ? above : below;
+        const double corner = tetVolume(p[tip], cut(tip, rest[0]), cut(tip, rest[1]), cut(tip, rest[2]));
+        return one ? corner : whole - corner;
+    }
+    // Two and two: a prism from edge (a, b) to the cut points towards c and d.
+    const int a = below[0], b = below[1], c = above[0], d = above[1];
+    const Vec3 ac = cut(a, c), ad = cut(a, d), bc = cut(b, c), bd = cut(b, d);
+    return tetVolume(p[a], ac, ad, p[b]) + tetVolume(ac, ad, p[b], bc) + tetVolume(ad, p[b], bc, bd);
+}
+
+}  // namespace
+
+double volumeBelowPlaneMm3(const TetMesh& mesh, const std::vector<Label>& labels, const Vec3& origin, const Vec3& up) {
+    double total = 0;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        if (std::find(labels.begin(), labels.end(), mesh.labels[t]) == labels.end()) continue;
+        std::array<Vec3, 4> p;
+        std::array<double, 4> h;
+        for (int k = 0; k < 4; ++k) {
+            p[k] = mesh.nodes[mesh.tets[t][k]];
+            h[k] = (p[k] - origin).dot(up);
+        }
+        total += clippedVolume(p, h);
+    }
+    return total;
 }
 
 }  // namespace jawmesh::test

@@ -55,6 +55,10 @@ struct RunFigures {
 RunFigures measureRun(const std::string& jawDir, const std::string& inputJawDir, const std::string& jaw,
                       const std::vector<int>& teethUnn);
 
+/// Volume (mm^3) of the tets with a label in `labels` below the plane through `origin` with unit
+/// normal `up` (the part where (x - origin) . up < 0), each tet clipped exactly by the plane.
+double volumeBelowPlaneMm3(const TetMesh& mesh, const std::vector<Label>& labels, const Vec3& origin, const Vec3& up);
+
 /// The UNNs of the tooth_<UNN>.* files in a case's teeth folder, sorted.
 std::vector<int> teethIn(const std::string& teethDir);
 

@@ -5,6 +5,7 @@
 #include "levelset/CarveGaps.h"
 #include "levelset/CarveMeasure.h"
 #include "levelset/LabelFieldIO.h"
+#include "support/AnalyticGrids.h"
 #include "support/TestData.h"
 
 #include <openvdb/tools/LevelSetSphere.h>
@@ -25,38 +26,14 @@ namespace {
 
 constexpr double kVoxel = 0.05;
 
-using Sdf = std::function<double(const Vec3d&)>;
-
-openvdb::FloatGrid::Ptr sample(const Sdf& f, Vec3d lo, Vec3d hi, double halfWidth = 3.0) {
-    const double band = halfWidth * kVoxel;
-    auto g = openvdb::FloatGrid::create(float(band));
-    g->setTransform(openvdb::math::Transform::createLinearTransform(kVoxel));
-    g->setGridClass(openvdb::GRID_LEVEL_SET);
-    auto acc = g->getAccessor();
-    const Coord a(int(std::floor(lo[0] / kVoxel)) - 5, int(std::floor(lo[1] / kVoxel)) - 5, int(std::floor(lo[2] / kVoxel)) - 5);
-    const Coord b(int(std::ceil(hi[0] / kVoxel)) + 5, int(std::ceil(hi[1] / kVoxel)) + 5, int(std::ceil(hi[2] / kVoxel)) + 5);
-    for (int i = a.x(); i <= b.x(); ++i)
-        for (int j = a.y(); j <= b.y(); ++j)
-            for (int k = a.z(); k <= b.z(); ++k) {
-                const double v = f(Vec3d(i, j, k) * kVoxel);
-                if (std::abs(v) < band) acc.setValue(Coord(i, j, k), float(v));
-            }
-    openvdb::tools::signedFloodFill(g->tree());
-    return g;
+openvdb::FloatGrid::Ptr sample(const test::Sdf& f, Vec3d lo, Vec3d hi, double halfWidth = 3.0) {
+    return test::sampleSdf(f, lo, hi, kVoxel, halfWidth);
 }
 
-double boxSdf(const Vec3d& p, const Vec3d& lo, const Vec3d& hi) {
-    const Vec3d c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
-    const Vec3d q(std::abs(p[0] - c[0]) - h[0], std::abs(p[1] - c[1]) - h[1], std::abs(p[2] - c[2]) - h[2]);
-    const Vec3d o(std::max(q[0], 0.0), std::max(q[1], 0.0), std::max(q[2], 0.0));
-    return o.length() + std::min(std::max({q[0], q[1], q[2]}), 0.0);
-}
+using test::boxSdf;
 
 /// Vertical capsule at (x, 0) from z0 to z1.
-double capsule(const Vec3d& p, double x, double z0, double z1, double r) {
-    const double z = std::clamp(p[2], z0, z1);
-    return (p - Vec3d(x, 0, z)).length() - r;
-}
+double capsule(const Vec3d& p, double x, double z0, double z1, double r) { return test::capsuleSdf(p, x, 0, z0, z1, r); }
 
 struct ToothShape {
     int unn;

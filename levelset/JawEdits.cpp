@@ -1,0 +1,108 @@
+// Implements levelset/JawEdits.h; what it computes, its rules and its contract are documented there.
+#include "levelset/JawEdits.h"
+
+#include "io/AtomicFile.h"
+#include "io/Error.h"
+#include "levelset/HealSocket.h"
+#include "levelset/LowerCrest.h"
+
+#include <fstream>
+#include <type_traits>
+
+namespace jawmesh {
+namespace {
+
+/// A tooth counts as in contact with the bone where the bone's level set is under this (mm).
+constexpr double kAxisContactMm = 0.2;
+
+nlohmann::json toJson(const LongAxis& a) {
+    return {{"origin", {a.origin.x(), a.origin.y(), a.origin.z()}}, {"direction", {a.axis.x(), a.axis.y(), a.axis.z()}}};
+}
+
+struct EditContext {
+    JawLevelSets& levelSets;
+    CarveOptions& carve;
+    std::string where;  ///< "<file>: edits[i]" for messages
+
+    LongAxis axisOf(int unn) const {
+        const auto given = carve.axes.find(unn);
+        return toothLongAxis(*levelSets.teeth.at(unn), *levelSets.bone, kAxisContactMm,
+                             given != carve.axes.end() ? &given->second : nullptr);
+    }
+};
+
+nlohmann::json apply(EditContext& ctx, const ExtractEdit& e) {
+    nlohmann::json record = {{"op", "extract"}, {"tooth", e.tooth}, {"socket", e.healed ? "healed" : "empty"}};
+    if (e.healed) {
+        SocketFill fill;
+        const LongAxis axis = ctx.axisOf(e.tooth);
+        ctx.levelSets.bone = healSocket(*ctx.levelSets.bone, *ctx.levelSets.teeth.at(e.tooth), axis,
+                                        ctx.carve.gapBridgeMm, fill, ctx.where);
+        record["fill_level_mm"] = fill.levelMm;
+        record["filled_volume_mm3"] = fill.filledVolumeMm3;
+        record["axis"] = toJson(axis);
+    }
+    ctx.levelSets.teeth.erase(e.tooth);
+    ctx.carve.toothPdl.erase(e.tooth);
+    return record;
+}
+
+nlohmann::json apply(EditContext& ctx, const BoneLossEdit& e) {
+    std::map<int, LongAxis> axes;
+    for (const auto& [unn, grid] : ctx.levelSets.teeth) axes[unn] = ctx.axisOf(unn);
+    std::vector<CrestLoss> losses;
+    ctx.levelSets.bone = lowerCrest(*ctx.levelSets.bone, ctx.levelSets.teeth, axes, e.teeth, e.depthMm,
+                                     ctx.carve.gapBridgeMm, losses, ctx.where);
+    nlohmann::json teeth = nlohmann::json::array();
+    for (const CrestLoss& l : losses)
+        teeth.push_back({{"tooth", l.unn},
+                         {"axis", toJson(l.axis)},
+                         {"crest_before_mm", l.crestBeforeMm},
+                         {"crest_after_mm", l.crestAfterMm},
+                         {"crest_drop_mm", l.crestBeforeMm - l.crestAfterMm},
+                         {"floor_mm", l.floorMm}});
+    return {{"op", "bone_loss"}, {"depth_mm", e.depthMm}, {"teeth", teeth}};
+}
+
+nlohmann::json apply(EditContext& ctx, const PdlThicknessEdit& e) {
+    ctx.carve.toothPdl[e.tooth] = PdlProfile{e.cervicalMm, e.midRootMm, e.apicalMm};
+    return {{"op", "pdl_thickness"},
+            {"tooth", e.tooth},
+            {"profile_mm", {{"cervical", e.cervicalMm}, {"mid_root", e.midRootMm}, {"apical", e.apicalMm}}}};
+}
+
+}  // namespace
+
+nlohmann::json readEditHistory(const std::string& dir) {
+    const std::string path = dir + "/" + kEditHistoryFile;
+    std::ifstream in(path);
+    if (!in) return nlohmann::json::array();
+    try {
+        nlohmann::json history = nlohmann::json::parse(in);
+        if (history.is_array()) return history;
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(path, std::string("not valid JSON: ") + e.what());
+    }
+    throw Error(path, "an edit history is a JSON array of edit records");
+}
+
+void writeEditHistory(const nlohmann::json& history, const std::string& dir) {
+    writeFileAtomically(dir + "/" + kEditHistoryFile, [&](std::ostream& o) { o << history.dump(2) << '\n'; }, false);
+}
+
+nlohmann::json applyEdits(const EditList& edits, JawLevelSets& levelSets, CarveOptions& carve, Progress& progress) {
+    std::vector<int> present;
+    for (const auto& [unn, grid] : levelSets.teeth) present.push_back(unn);
+    requireEditsFit(edits, present);
+    nlohmann::json applied = nlohmann::json::array();
+    ProgressStage stage(progress, "edits");
+    for (std::size_t i = 0; i < edits.edits.size(); ++i) {
+        progress.checkCancelled();
+        EditContext ctx{levelSets, carve, edits.file + ": edits[" + std::to_string(i) + "]"};
+        applied.push_back(std::visit([&](const auto& e) { return apply(ctx, e); }, edits.edits[i]));
+        stage.update(double(i + 1) / double(edits.edits.size()));
+    }
+    return {{"file", edits.file}, {"applied", applied}};
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,64 @@
+// Implements levelset/JawLevelSetsIO.h; what it computes, its rules and its contract are documented there.
+#include "levelset/JawLevelSetsIO.h"
+
+#include "io/AtomicFile.h"
+#include "io/Error.h"
+#include "io/ToothAxes.h"
+#include "levelset/Csg.h"
+#include "levelset/VdbFile.h"
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+namespace jawmesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+openvdb::FloatGrid::Ptr readLevelSet(const std::string& path) {
+    auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(readGridFile(path));
+    if (!grid) throw Error(path, "not a float grid (a level set)");
+    bandHalfWidthMm(*grid);
+    return grid;
+}
+
+}  // namespace
+
+void writeJawLevelSets(const JawLevelSets& levelSets, Jaw jaw, const CarveOptions& carve, const std::string& dir) {
+    fs::create_directories(dir);
+    writeGridFile(levelSets.bone, dir + "/bone.vdb");
+    for (const auto& [unn, grid] : levelSets.teeth)
+        writeGridFile(std::const_pointer_cast<openvdb::FloatGrid>(grid), dir + "/tooth_" + std::to_string(unn) + ".vdb");
+    const nlohmann::json j = {{"jaw", jawName(jaw)}, {"options", toJson(carve)}};
+    writeFileAtomically(dir + "/carve.json", [&](std::ostream& out) { out << j.dump(2) << '\n'; }, false);
+    if (!carve.axes.empty()) writeToothAxes(carve.axes, dir + "/teeth_axes.json");
+}
+
+StoredJawLevelSets readJawLevelSets(const std::string& dir) {
+    const std::string carvePath = dir + "/carve.json";
+    std::ifstream in(carvePath);
+    if (!in) throw Error(carvePath, "missing: the folder holds no input level sets (write them with --write-levelsets)");
+    StoredJawLevelSets s;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(in);
+        s.jaw = jawFromName(j.at("jaw").get<std::string>());
+        s.carve = carveOptionsFromJson(j.at("options"), carvePath);
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(carvePath, e.what());
+    }
+    if (fs::exists(dir + "/teeth_axes.json")) s.carve.axes = readToothAxes(dir + "/teeth_axes.json");
+    s.levelSets.bone = readLevelSet(dir + "/bone.vdb");
+    const std::regex tooth("tooth_([0-9]+)\\.vdb");
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        std::smatch m;
+        const std::string name = entry.path().filename().string();
+        if (!std::regex_match(name, m, tooth)) continue;
+        auto grid = readLevelSet(entry.path().string());
+        requireSameTransform(*s.levelSets.bone, *grid, entry.path().c_str());
+        s.levelSets.teeth[std::stoi(m[1])] = grid;
+    }
+    return s;
+}
+
+}  // namespace jawmesh

@@ -1,0 +1,52 @@
+// Horizontal bone loss (issue #24): the alveolar crest around chosen teeth lowered by a depth d
+// along each tooth's long axis a. The bone is intersected with a copy of itself moved down by the
+// depth, B'(x) = max(B(x), F(x + s(x))): every upward-facing part of the crest drops by d exactly
+// and walls along the axis stay. F is the bone with each listed tooth's socket filled (the tooth
+// dilated by the widest gap carving bridges, below the lowest point of its old crest), so the
+// socket's walls and floor, which face up where a root tapers, do not widen or deepen. The shift
+// s(x) = d w a tapers w to none: over kLossTaperMm towards the teeth that are not listed and
+// beyond kLossReachMm from the listed teeth's axes (the edge of the loss is a slope, not a
+// cliff), and downwards over kLossRampDepths * d to a floor under which nothing moves (other
+// upward-facing bone, e.g. a lingual ridge, drops by less the deeper it is). The carve that
+// follows caps each PDL at the new crest.
+#pragma once
+
+#include "levelset/ToothLongAxis.h"
+
+#include <openvdb/openvdb.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace jawmesh {
+
+/// Width of the slope at the lateral edges of a bone loss, mm.
+constexpr double kLossTaperMm = 2.0;
+/// Distance from a listed tooth's axis beyond which no bone is lost, mm (full loss up to
+/// kLossReachMm - kLossTaperMm: the widest alveolar ridge around a molar).
+constexpr double kLossReachMm = 10.0;
+/// The depth ramps from full at the new crest's lowest point to none over this many depths.
+constexpr double kLossRampDepths = 2.0;
+/// A root must keep this much bone between the floor and its apex, mm.
+constexpr double kLossMinRootInBoneMm = 1.0;
+
+/// One listed tooth: crest heights along its axis (AlveolarCrest.h mean of the bins) and the floor.
+struct CrestLoss {
+    int unn = 0;
+    LongAxis axis;
+    double crestBeforeMm = 0, crestAfterMm = 0, floorMm = 0;
+};
+
+/// The bone with its crest lowered by depthMm around the teeth `listed` (UNNs of `teeth`). `axes`
+/// holds every tooth's axis (listed or not: the others bound the loss); gapMm is the socket fill's
+/// dilation (CarveOptions::gapBridgeMm). Fills `losses`, one per listed tooth. Throws
+/// Error("<what>: ...") when a listed tooth has no crest (no bone near it) or the loss would leave
+/// less than kLossMinRootInBoneMm of its root in bone.
+/// Cost: an offset of each listed tooth, the bone's band near the listed crests in parallel, a
+/// flood fill of the bone grid.
+openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::map<int, openvdb::FloatGrid::ConstPtr>& teeth,
+                                   const std::map<int, LongAxis>& axes, const std::vector<int>& listed, double depthMm,
+                                   double gapMm, std::vector<CrestLoss>& losses, const std::string& what);
+
+}  // namespace jawmesh

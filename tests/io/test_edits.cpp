@@ -1,0 +1,83 @@
+// Edit files (io/Edits.h): the issue's example reads as written and round-trips through run.json's
+// form; every malformed entry is refused with the file and the entry named.
+#include "io/Edits.h"
+#include "io/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <filesystem>
+
+using namespace jawmesh;
+
+namespace {
+
+std::string refusal(const std::string& text) {
+    try {
+        parseEdits(nlohmann::json::parse(text), "e.json");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(EditFile, ReadsTheIssuesExampleAndRoundTrips) {
+    const auto path = std::filesystem::temp_directory_path() / "jawmesh_edits_test.json";
+    std::ofstream(path) << R"({"edits": [
+        {"op": "bone_loss", "teeth": [26, 23, 24, 25], "depth_mm": 2.0},
+        {"op": "extract", "tooth": 30, "socket": "healed"},
+        {"op": "pdl_thickness", "tooth": 24, "thickness_mm": 0.3},
+        {"op": "pdl_thickness", "tooth": 19, "profile_mm": {"cervical": 0.3, "mid_root": 0.2, "apical": 0.25}},
+        {"op": "extract", "tooth": 31}
+    ]})";
+    const EditList list = readEditFile(path.string());
+    std::filesystem::remove(path);
+    ASSERT_EQ(list.edits.size(), 5u);
+    const auto& loss = std::get<BoneLossEdit>(list.edits[0]);
+    EXPECT_EQ(loss.teeth, (std::vector<int>{23, 24, 25, 26}));
+    EXPECT_EQ(loss.depthMm, 2.0);
+    EXPECT_TRUE(std::get<ExtractEdit>(list.edits[1]).healed);
+    EXPECT_FALSE(std::get<ExtractEdit>(list.edits[4]).healed);
+    EXPECT_EQ(std::get<PdlThicknessEdit>(list.edits[2]).apicalMm, 0.3);
+    EXPECT_EQ(std::get<PdlThicknessEdit>(list.edits[3]).cervicalMm, 0.3);
+    EXPECT_EQ(extractedTeeth(list), (std::vector<int>{30, 31}));
+    const nlohmann::json recorded = toJson(list);
+    EXPECT_EQ(toJson(parseEdits({{"edits", recorded.at("edits")}}, "again")).at("edits"), recorded.at("edits"));
+    EXPECT_NO_THROW(requireEditsFit(list, {19, 23, 24, 25, 26, 30, 31}));
+    try {
+        requireEditsFit(list, {19, 23, 24, 25, 30, 31});
+        FAIL() << "tooth 26 is missing";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("edits[0]: tooth 26 is not in this jaw"), std::string::npos) << e.what();
+    }
+}
+
+TEST(EditFile, RefusesMalformedEntriesNamingFileAndEntry) {
+    EXPECT_NE(refusal(R"({"edit": []})").find("e.json"), std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"tooth": 3}]})").find("e.json: edits[0]"), std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "implode", "tooth": 3}]})").find("edits[0] (implode): unknown op"), std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "extract", "tooth": 33}]})").find("UNN from 1 to 32"), std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "extract", "tooth": 3, "socket": "filled"}]})").find("'socket'"), std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "teeth": [3], "depth_mm": -1}]})").find("'depth_mm' is -1"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "teeth": [3], "depth": 2}]})").find("'depth_mm' is missing"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "teeth": [3, 3], "depth_mm": 2}]})").find("twice"), std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "teeth": [3], "depth_mm": 2, "side": "mesial"}]})").find("unknown key 'side'"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "pdl_thickness", "tooth": 3}]})").find("either 'thickness_mm' or 'profile_mm'"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "pdl_thickness", "tooth": 3, "thickness_mm": 0}]})").find("'thickness_mm' is 0"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "extract", "tooth": 3}, {"op": "pdl_thickness", "tooth": 3, "thickness_mm": 0.3}]})")
+                  .find("edits[1] (pdl_thickness): tooth 3 was extracted by an earlier edit"),
+              std::string::npos);
+    try {
+        readEditFile("/nonexistent/edits.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/edits.json"), std::string::npos);
+    }
+}
