@@ -77,14 +77,23 @@ case "${1:-}" in
     # The whole pipeline on the shared mandible (about 3 minutes on 2 cores), then the tests that check a
     # finished run (tests/cli/slow_run_mandible.cpp, SlowEval, the interface surface
     # against the run's label field) and the mandible given as a label volume
-    # (tests/cli/slow_label_map_mandible.cpp, another 5 minutes); not part of CI's time.
+    # (tests/cli/slow_label_map_mandible.cpp, another 5 minutes), and the what-ifs of issue #24
+    # (tests/cli/slow_edit_mandible.cpp); not part of CI's time.
     install_packages "${TEST_PACKAGES[@]}"
     build
     [ -d ../shared/data/openmandible ] || { echo "no ../shared/data/openmandible" >&2; exit 1; }
     rm -rf build/mandible-run
     ./build/cli/jawmesh run ../shared/data/openmandible -o build/mandible-run --jaw mandible --write-levelsets
+    # The what-ifs of issue #24 on the carved grids of that run, meshed (another 3 minutes).
+    rm -rf build/mandible-edit build/mandible-edit-run
+    ./build/cli/jawmesh edit build/mandible-run/mandible/levelsets --edits tests/data/mandible_what_if.json \
+      -o build/mandible-edit
+    ./build/cli/jawmesh run ../shared/data/openmandible --from-vdb build/mandible-edit -o build/mandible-edit-run \
+      --jaw mandible
     JAWMESH_MANDIBLE_RUN="$PWD/build/mandible-run/mandible" JAWMESH_LABEL_MAP_TEST=1 \
-      ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun|SlowInterfaces|SlowLabelMap' --output-on-failure
+      JAWMESH_MANDIBLE_EDIT_RUN="$PWD/build/mandible-edit-run/mandible" \
+      ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun|SlowInterfaces|SlowLabelMap|SlowEditMandible' \
+      --output-on-failure
     ;;
   slurm-test)
     install_packages "${TEST_PACKAGES[@]}" "${SLURM_PACKAGES[@]}"

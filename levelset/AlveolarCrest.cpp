@@ -25,20 +25,15 @@ CrestProfile crestAround(const openvdb::FloatGrid& bone, const openvdb::FloatGri
     openvdb::MaskTree near(tooth.tree(), false, openvdb::TopologyCopy());
     const int reach = std::max(1, int(std::ceil((kCrestReachMm - bandHalfWidthMm(tooth)) / voxel)));
     openvdb::tools::dilateActiveValues(near, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
-    // A direction across the axis from which azimuths are counted.
-    const openvdb::Vec3d a = axis.axis;
-    const openvdb::Vec3d u = (std::abs(a.x()) < 0.9 ? openvdb::Vec3d(1, 0, 0) : openvdb::Vec3d(0, 1, 0)).cross(a).unit();
-    const openvdb::Vec3d v = a.cross(u);
     std::vector<double> top(kCrestBins, -std::numeric_limits<double>::infinity());
     auto B = bone.getConstAccessor();
     for (auto leaf = near.cbeginLeaf(); leaf; ++leaf)
         for (auto it = leaf->cbeginValueOn(); it; ++it) {
             float b;
             if (!B.probeValue(it.getCoord(), b) || std::abs(b) > voxel) continue;
-            const openvdb::Vec3d d = xf.indexToWorld(it.getCoord()) - axis.origin;
-            const double phi = std::atan2(d.dot(v), d.dot(u)) + M_PI;
-            const int bin = std::min(kCrestBins - 1, int(phi / (2 * M_PI) * kCrestBins));
-            top[bin] = std::max(top[bin], d.dot(a));
+            const openvdb::Vec3d p = xf.indexToWorld(it.getCoord());
+            const int bin = axis.sectorOf(p, kCrestBins);
+            top[bin] = std::max(top[bin], axis.heightOf(p));
         }
     for (double h : top)
         if (std::isfinite(h)) crest.heightsMm.push_back(h);
@@ -50,6 +45,18 @@ CrestProfile crestAround(const openvdb::FloatGrid& bone, const openvdb::FloatGri
     double sum = 0;
     for (double h : sorted) sum += h;
     crest.meanMm = sum / double(sorted.size());
+    crest.rootRadiusMm.assign(kCrestBins, 0.0);
+    for (auto it = tooth.tree().cbeginValueOn(); it; ++it) {
+        if (*it > 0 || *it < -2 * voxel) continue;
+        const openvdb::Vec3d p = xf.indexToWorld(it.getCoord());
+        if (std::abs(axis.heightOf(p) - crest.meanMm) > kCrestRadiusBandMm) continue;
+        double& r = crest.rootRadiusMm[std::size_t(axis.sectorOf(p, kCrestBins))];
+        r = std::max(r, axis.lateralOf(p));
+    }
+    double widest = 0;
+    for (double r : crest.rootRadiusMm) widest = std::max(widest, r);
+    for (double& r : crest.rootRadiusMm)
+        if (r == 0) r = widest;  // a sector the surface missed: the root's widest reach
     return crest;
 }
 

@@ -18,12 +18,17 @@ struct CrestProfile {
     double lowMm = 0;               ///< a low crest height: the 10th percentile of the bins
     double meanMm = 0;              ///< mean of the bins
     double apexMm = 0;              ///< lowest height of the tooth's surface (its apex)
+    /// Per sector (kCrestBins), the tooth's distance from its axis within kCrestRadiusBandMm of
+    /// the crest's mean height: how far the root reaches at the crest in that direction, mm.
+    std::vector<double> rootRadiusMm;
 };
 
 /// Azimuth bins of crestAround (10 degrees each).
 constexpr int kCrestBins = 36;
 /// How far from the tooth's surface a bone surface voxel still belongs to its socket rim, mm.
 constexpr double kCrestReachMm = 0.6;
+/// The root's radius at the crest is taken over this far above and below the crest's mean, mm.
+constexpr double kCrestRadiusBandMm = 1.0;
 
 /// The crest of the bone around `tooth` along `axis` (see the file comment); grids on one
 /// transform. Throws Error("<what>: ...") when no bone surface lies within kCrestReachMm of the

@@ -187,32 +187,59 @@ CarveRules rulesOf(const CarveOptions& options, const FloatGrid& bone) {
     return rules;
 }
 
+/// A tooth's own PDL: the jaw's, or its entry in CarveOptions::toothPdl.
+void setOwnPdl(ToothWork& t, const CarveRules& rules, const CarveOptions& options) {
+    t.profile = rules.profile;
+    t.uniformThickness = rules.uniformThickness;
+    if (const auto own = options.toothPdl.find(t.unn); own != options.toothPdl.end()) {
+        const PdlProfile& p = own->second;
+        const bool uniform = p.cervical == p.midRoot && p.apical == p.midRoot;
+        t.profile = uniform ? std::nullopt : std::optional(p);
+        t.uniformThickness = p.midRoot;
+    }
+}
+
+/// Band half widths (voxels) tooth i needs: its erosion inside; outside, the socket widening plus
+/// the clearance of itself and of every tooth near it (their bisectors read its distances), so
+/// a thicker PDL on one tooth widens only its own and its neighbours' bands.
+std::pair<double, double> bandVoxels(const std::vector<ToothWork>& teeth, const std::vector<CoordBBox>& boxes,
+                                     std::size_t i, const CarveRules& rules) {
+    const auto widening = [&](const ToothWork& t) {
+        const double tMax = thicknessRangeMm(t.profile, t.uniformThickness).second;
+        return tMax - rules.ratio * tMax;
+    };
+    double w = widening(teeth[i]);
+    const int near = int(std::ceil(1.0 / rules.voxel));  // teeth within 1 mm of each other
+    CoordBBox box = boxes[i];
+    box.expand(near);
+    for (std::size_t m = 0; m < teeth.size(); ++m)
+        if (m != i && box.hasOverlap(boxes[m])) w = std::max(w, widening(teeth[m]));
+    const double e = rules.ratio * thicknessRangeMm(teeth[i].profile, teeth[i].uniformThickness).second;
+    return {std::max(1.0, std::ceil((w + rules.clearance) / rules.voxel - 1e-9)), std::max(1.0, std::ceil(e / rules.voxel - 1e-9))};
+}
+
 /// Phase 1. Per tooth (in parallel): its band, and tooth / bone distances where a gap can be
 /// bridged. The band must hold the PDL rules: e inside, w + clearance outside (for the bisector).
 void prepareTeeth(CarveContext& ctx, const std::map<int, FloatGrid::ConstPtr>& teethIn) {
     const CarveRules& rules = ctx.rules;
-    const double eMax = rules.ratio * rules.maxThickness, wMax = rules.maxThickness - eMax;
-    const double exVoxels = std::ceil((wMax + rules.clearance) / rules.voxel - 1e-9);
-    const double inVoxels = std::ceil(eMax / rules.voxel - 1e-9);
-    ctx.teeth.resize(teethIn.size());
-    ProgressStage stage(ctx.progress, "carve: tooth bands");
     std::vector<std::pair<int, FloatGrid::ConstPtr>> in(teethIn.begin(), teethIn.end());
-    std::atomic<int> done{0};
-    tbb::parallel_for(std::size_t(0), in.size(), [&](std::size_t i) {
-        if (ctx.progress.cancelled()) return;
+    ctx.teeth.resize(teethIn.size());
+    std::vector<CoordBBox> boxes;
+    for (std::size_t i = 0; i < in.size(); ++i) {
         ToothWork& t = ctx.teeth[i];
         t.unn = in[i].first;
         t.toothL = toothLabel(t.unn);
         t.pdlL = pdlLabel(t.unn);
-        t.profile = rules.profile;
-        t.uniformThickness = rules.uniformThickness;
-        if (const auto own = ctx.options.toothPdl.find(t.unn); own != ctx.options.toothPdl.end()) {
-            const PdlProfile& p = own->second;
-            const bool uniform = p.cervical == p.midRoot && p.apical == p.midRoot;
-            t.profile = uniform ? std::nullopt : std::optional(p);
-            t.uniformThickness = p.midRoot;
-        }
-        prepareTooth(t, *in[i].second, ctx.bone, rules, std::max(exVoxels, 1.0), std::max(inVoxels, 1.0), ctx.options);
+        setOwnPdl(t, rules, ctx.options);
+        boxes.push_back(in[i].second->evalActiveVoxelBoundingBox());
+    }
+    ProgressStage stage(ctx.progress, "carve: tooth bands");
+    std::atomic<int> done{0};
+    tbb::parallel_for(std::size_t(0), in.size(), [&](std::size_t i) {
+        if (ctx.progress.cancelled()) return;
+        ToothWork& t = ctx.teeth[i];
+        const auto [exVoxels, inVoxels] = bandVoxels(ctx.teeth, boxes, i, rules);
+        prepareTooth(t, *in[i].second, ctx.bone, rules, exVoxels, inVoxels, ctx.options);
         stage.update(double(++done) / double(in.size()));
     });
     ctx.progress.checkCancelled();

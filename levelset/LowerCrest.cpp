@@ -16,8 +16,19 @@
 namespace jawmesh {
 namespace {
 
+/// How far a point is from a root near the crest: its distance from the axis less the root's reach
+/// in that direction (AlveolarCrest.h rootRadiusMm).
+struct Footprint {
+    const LongAxis* axis = nullptr;
+    std::vector<double> radiusMm;
+    double distanceOf(const openvdb::Vec3d& x) const {
+        return axis->lateralOf(x) - radiusMm[std::size_t(axis->sectorOf(x, kCrestBins))];
+    }
+};
+
 /// A listed tooth as the loss sees it.
 struct Listed {
+    Footprint root;
     const LongAxis* axis = nullptr;
     double floorMm = 0;          ///< nothing moves below this height
     double fillTopMm = 0;        ///< the socket fill ends at the old crest's lowest point
@@ -27,17 +38,17 @@ struct Listed {
 /// Where and how far the bone drops.
 struct LossZone {
     std::vector<Listed> listed;
-    std::vector<const LongAxis*> others;
+    std::vector<Footprint> others;
     double depthMm = 0, rampMm = 0, gapMm = 0;
 
-    /// The nearest listed tooth to x (by distance to its axis) and the lateral share of the depth.
+    /// The nearest listed root to x and the lateral share of the depth.
     std::pair<const Listed*, double> lateral(const openvdb::Vec3d& x) const {
         double nearL = std::numeric_limits<double>::infinity(), nearU = nearL;
         const Listed* n = nullptr;
         for (const Listed& l : listed)
-            if (const double r = l.axis->lateralOf(x); r < nearL) nearL = r, n = &l;
-        for (const LongAxis* o : others) nearU = std::min(nearU, o->lateralOf(x));
-        const double towardsOthers = std::clamp((nearU - nearL) / kLossTaperMm + 0.5, 0.0, 1.0);
+            if (const double r = l.root.distanceOf(x); r < nearL) nearL = r, n = &l;
+        for (const Footprint& o : others) nearU = std::min(nearU, o.distanceOf(x));
+        const double towardsOthers = std::clamp(1.0 - (nearL - nearU) / kLossTaperMm, 0.0, 1.0);
         const double reach = std::clamp((kLossReachMm - nearL) / kLossTaperMm, 0.0, 1.0);
         return {n, towardsOthers * reach};
     }
@@ -92,10 +103,16 @@ openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::ma
             throw Error(s.str());
         }
         losses.push_back({unn, axis, crest.meanMm, 0, floor});
-        zone.listed.push_back({&axis, floor, crest.minMm, withExteriorReach(*teeth.at(unn), reachMm)});
+        zone.listed.push_back({{&axis, crest.rootRadiusMm}, &axis, floor, crest.minMm, withExteriorReach(*teeth.at(unn), reachMm)});
     }
-    for (const auto& [unn, axis] : axes)
-        if (std::find(listed.begin(), listed.end(), unn) == listed.end()) zone.others.push_back(&axis);
+    for (const auto& [unn, axis] : axes) {
+        if (std::find(listed.begin(), listed.end(), unn) != listed.end()) continue;
+        try {
+            zone.others.push_back({&axis, crestAround(bone, *teeth.at(unn), axis, what).rootRadiusMm});
+        } catch (const Error&) {
+            // a tooth without bone around it has no crest to keep
+        }
+    }
 
     // Voxels whose value can change: the band where the bone drops, and where that band lands.
     const auto& xf = bone.transform();

@@ -4,11 +4,14 @@
 // and walls along the axis stay. F is the bone with each listed tooth's socket filled (the tooth
 // dilated by the widest gap carving bridges, below the lowest point of its old crest), so the
 // socket's walls and floor, which face up where a root tapers, do not widen or deepen. The shift
-// s(x) = d w a tapers w to none: over kLossTaperMm towards the teeth that are not listed and
-// beyond kLossReachMm from the listed teeth's axes (the edge of the loss is a slope, not a
-// cliff), and downwards over kLossRampDepths * d to a floor under which nothing moves (other
-// upward-facing bone, e.g. a lingual ridge, drops by less the deeper it is). The carve that
-// follows caps each PDL at the new crest.
+// s(x) = d w a, along the axis of the nearest listed root, tapers w to none: towards the teeth
+// that are not listed, from full where x is as near a listed root as an unlisted one to none
+// kLossTaperMm nearer the unlisted one (the whole crest around every listed tooth drops by d; the
+// slope lies in the septum beside it); beyond kLossReachMm from the listed roots; and downwards
+// over kLossRampDepths * d to a floor under which nothing moves (other upward-facing bone, e.g. a
+// lingual ridge, drops by less the deeper it is). Distances to a root are taken from its axis less
+// its radius at the crest in that direction (AlveolarCrest.h). The carve that follows caps each
+// PDL at the new crest.
 #pragma once
 
 #include "levelset/ToothLongAxis.h"
@@ -22,10 +25,10 @@
 namespace jawmesh {
 
 /// Width of the slope at the lateral edges of a bone loss, mm.
-constexpr double kLossTaperMm = 2.0;
-/// Distance from a listed tooth's axis beyond which no bone is lost, mm (full loss up to
-/// kLossReachMm - kLossTaperMm: the widest alveolar ridge around a molar).
-constexpr double kLossReachMm = 10.0;
+constexpr double kLossTaperMm = 1.5;
+/// Distance from a listed root beyond which no bone is lost, mm (full loss up to kLossReachMm -
+/// kLossTaperMm: past the widest alveolar ridge around a molar).
+constexpr double kLossReachMm = 7.0;
 /// The depth ramps from full at the new crest's lowest point to none over this many depths.
 constexpr double kLossRampDepths = 2.0;
 /// A root must keep this much bone between the floor and its apex, mm.

@@ -45,7 +45,11 @@ LongAxis toothLongAxis(const openvdb::FloatGrid& tooth, const openvdb::FloatGrid
     for (auto it = tooth.tree().cbeginValueOn(); it; ++it) {
         if (*it >= 0 || *it < -2 * voxel) continue;
         surface.push_back(tooth.transform().indexToWorld(it.getCoord()));
-        contact.push_back(B.getValue(it.getCoord()) < contactMm);
+        // Off the bone's band the value is its background, which may be under contactMm: only band
+        // values and the inside count.
+        float b;
+        const bool band = B.probeValue(it.getCoord(), b);
+        contact.push_back(band ? b < contactMm : b < 0);
     }
     return toothLongAxis(surface, contact, given);
 }

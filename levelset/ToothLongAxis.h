@@ -8,6 +8,8 @@
 
 #include <openvdb/openvdb.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace jawmesh {
@@ -22,6 +24,17 @@ struct LongAxis {
         const openvdb::Vec3d d = world - origin;
         return (d - axis * d.dot(axis)).length();
     }
+    /// Angle of a world point around the axis, in [0, 2 pi), from a fixed direction across it.
+    double azimuthOf(const openvdb::Vec3d& world) const {
+        const openvdb::Vec3d u =
+            (std::abs(axis.x()) < 0.9 ? openvdb::Vec3d(1, 0, 0) : openvdb::Vec3d(0, 1, 0)).cross(axis).unit();
+        const openvdb::Vec3d d = world - origin;
+        return std::atan2(d.dot(axis.cross(u)), d.dot(u)) + M_PI;
+    }
+    /// Which of `bins` equal sectors around the axis a world point lies in.
+    int sectorOf(const openvdb::Vec3d& world, int bins) const {
+        return std::min(bins - 1, int(azimuthOf(world) / (2 * M_PI) * bins));
+    }
 };
 
 /// The axis through `surface` (world points on the tooth's surface, mm): `given`'s occlusal axis
@@ -32,7 +45,7 @@ LongAxis toothLongAxis(const std::vector<openvdb::Vec3d>& surface, const std::ve
                        const ToothAxes* given);
 
 /// The same from the tooth's level set: its voxels within two voxels inside the surface, in bone
-/// contact where the bone's level set is under contactMm there.
+/// contact where the bone's band is under contactMm there, or where they are inside the bone.
 LongAxis toothLongAxis(const openvdb::FloatGrid& tooth, const openvdb::FloatGrid& bone, double contactMm,
                        const ToothAxes* given);
 

@@ -237,4 +237,28 @@ double volumeBelowPlaneMm3(const TetMesh& mesh, const std::vector<Label>& labels
     return total;
 }
 
+std::vector<double> crestHeightsMm(const TetMesh& mesh, Label bone, int unn, const Vec3& origin, const Vec3& up,
+                                   double reachMm) {
+    const std::map<Label, SurfaceMesh> surfaces = regionSurfaces(mesh);
+    const SurfaceMesh& tooth = surfaces.at(toothLabel(unn));
+    const SurfaceDistance toTooth(tooth, 0.5);
+    Vec3 lo = tooth.vertices[0], hi = lo;
+    for (const Vec3& v : tooth.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const Vec3 u = (std::abs(up.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(up).normalized(), w = up.cross(u);
+    constexpr int kBins = 36;
+    std::vector<double> top(kBins, -std::numeric_limits<double>::infinity());
+    for (const Vec3& v : surfaces.at(bone).vertices) {
+        if (((v - lo).array() < -reachMm).any() || ((v - hi).array() > reachMm).any()) continue;
+        if (toTooth(v) > reachMm) continue;
+        const Vec3 d = v - origin;
+        const double phi = std::atan2(d.dot(w), d.dot(u)) + M_PI;
+        const int bin = std::min(kBins - 1, int(phi / (2 * M_PI) * kBins));
+        top[std::size_t(bin)] = std::max(top[std::size_t(bin)], d.dot(up));
+    }
+    std::vector<double> heights;
+    for (double h : top)
+        if (std::isfinite(h)) heights.push_back(h);
+    return heights;
+}
+
 }  // namespace jawmesh::test

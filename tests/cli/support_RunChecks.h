@@ -59,6 +59,13 @@ RunFigures measureRun(const std::string& jawDir, const std::string& inputJawDir,
 /// normal `up` (the part where (x - origin) . up < 0), each tet clipped exactly by the plane.
 double volumeBelowPlaneMm3(const TetMesh& mesh, const std::vector<Label>& labels, const Vec3& origin, const Vec3& up);
 
+/// The alveolar crest around a tooth on a mesh, as levelset/AlveolarCrest.h defines it on grids:
+/// the bone's surface vertices within reachMm of the tooth's surface, binned by azimuth (36 bins)
+/// around the axis (origin, unit up); per bin the highest (height along up, mm). Bins without bone
+/// are left out.
+std::vector<double> crestHeightsMm(const TetMesh& mesh, Label bone, int unn, const Vec3& origin, const Vec3& up,
+                                   double reachMm = 0.6);
+
 /// The UNNs of the tooth_<UNN>.* files in a case's teeth folder, sorted.
 std::vector<int> teethIn(const std::string& teethDir);
 
