@@ -30,22 +30,16 @@ openvdb::FloatGrid::Ptr healSocket(const openvdb::FloatGrid& bone, const openvdb
     const auto reach = withExteriorReach(tooth, gapMm + bg + voxel);
     const auto& xf = bone.transform();
     auto T = reach->getConstAccessor();
-    auto B = bone.getConstAccessor();
     const openvdb::CoordBBox box = reach->evalActiveVoxelBoundingBox();
-    // The fill's band (its side and its top) and the bone's band inside it.
+    // Every voxel the fill can change: within the band of its side or below its top's band.
     openvdb::MaskTree where(false);
-    for (auto it = box.begin(); it; ++it) {
-        const double h = axis.heightOf(xf.indexToWorld(*it)) - fill.levelMm;
-        if (h > bg + voxel) continue;
-        const double g = T.getValue(*it) - gapMm;
-        if (g > bg) continue;
-        if (std::abs(h) <= bg + voxel || g > -bg || B.isValueOn(*it)) where.setValueOn(*it);
-    }
-    const auto& boneTree = bone.tree();
-    const auto& toothTree = reach->tree();
-    auto healed = rewriteLevelSet(bone, where, [&](const openvdb::Coord& ijk) {
-        const double h = axis.heightOf(xf.indexToWorld(ijk)) - fill.levelMm;
-        return std::min(boneTree.getValue(ijk), float(std::max(double(toothTree.getValue(ijk)) - gapMm, h)));
+    for (auto it = box.begin(); it; ++it)
+        if (axis.heightOf(xf.indexToWorld(*it)) - fill.levelMm < bg && T.getValue(*it) - gapMm < bg) where.setValueOn(*it);
+    auto healed = rewriteLevelSet(bone, std::move(where), [&]() -> VoxelValue {
+        return [&, B = bone.getConstAccessor(), R = reach->getConstAccessor()](const openvdb::Coord& ijk) mutable {
+            const double h = axis.heightOf(xf.indexToWorld(ijk)) - fill.levelMm;
+            return std::min(B.getValue(ijk), float(std::max(double(R.getValue(ijk)) - gapMm, h)));
+        };
     });
     fill.filledVolumeMm3 = double(insideCount(*healed, box) - insideCount(bone, box)) * voxel * voxel * voxel;
     return healed;

@@ -6,6 +6,7 @@
 #include "levelset/HealSocket.h"
 #include "levelset/LowerCrest.h"
 
+#include <chrono>
 #include <fstream>
 #include <type_traits>
 
@@ -99,7 +100,10 @@ nlohmann::json applyEdits(const EditList& edits, JawLevelSets& levelSets, CarveO
     for (std::size_t i = 0; i < edits.edits.size(); ++i) {
         progress.checkCancelled();
         EditContext ctx{levelSets, carve, edits.file + ": edits[" + std::to_string(i) + "]"};
-        applied.push_back(std::visit([&](const auto& e) { return apply(ctx, e); }, edits.edits[i]));
+        const auto start = std::chrono::steady_clock::now();
+        nlohmann::json record = std::visit([&](const auto& e) { return apply(ctx, e); }, edits.edits[i]);
+        record["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        applied.push_back(std::move(record));
         stage.update(double(i + 1) / double(edits.edits.size()));
     }
     return {{"file", edits.file}, {"applied", applied}};

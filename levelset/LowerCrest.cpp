@@ -7,10 +7,11 @@
 #include "levelset/RewriteLevelSet.h"
 
 #include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/Morphology.h>
+#include <openvdb/tools/LevelSetUtil.h>
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 namespace jawmesh {
@@ -33,6 +34,7 @@ struct Listed {
     double floorMm = 0;          ///< nothing moves below this height
     double fillTopMm = 0;        ///< the socket fill ends at the old crest's lowest point
     openvdb::FloatGrid::Ptr tooth;  ///< its distance out past the gap: the socket fill is {T < gap}
+    double crestTopMm = 0;          ///< the old crest's highest sector
 };
 
 /// Where and how far the bone drops.
@@ -59,25 +61,44 @@ struct LossZone {
         const double ramp = std::clamp((n->axis->heightOf(x) - n->floorMm) / rampMm, 0.0, 1.0);
         return {n, depthMm * share * ramp};
     }
-    /// Where the bone at source p lands: x = p - drop(x) a, solved along the ramp (linear there).
-    openvdb::Vec3d landing(const openvdb::Vec3d& p) const {
-        const auto [n, share] = lateral(p);  // unchanged along the axis
-        if (!n || share <= 0) return p;
-        const double D = depthMm * share, hp = n->axis->heightOf(p) - n->floorMm;
-        const double hx = hp - D >= rampMm ? hp - D : std::max(0.0, hp / (1.0 + D / rampMm));
-        return p - n->axis->axis * (hp - hx);
+};
+
+/// The bone with the listed sockets filled below their old crests, read through one thread's
+/// accessors at a world point (mm).
+struct FilledBone {
+    const openvdb::FloatGrid& bone;
+    const LossZone& zone;
+    openvdb::FloatGrid::ConstAccessor boneAcc;
+    std::vector<openvdb::FloatGrid::ConstAccessor> toothAcc;
+
+    FilledBone(const openvdb::FloatGrid& b, const LossZone& z) : bone(b), zone(z), boneAcc(b.getConstAccessor()) {
+        for (const Listed& l : z.listed) toothAcc.push_back(l.tooth->getConstAccessor());
+    }
+    float operator()(const openvdb::Vec3d& world) {
+        const openvdb::Vec3d ijk = bone.transform().worldToIndex(world);
+        double b = openvdb::tools::BoxSampler::sample(boneAcc, ijk);
+        for (std::size_t i = 0; i < zone.listed.size(); ++i) {
+            const Listed& l = zone.listed[i];
+            const double g = openvdb::tools::BoxSampler::sample(toothAcc[i], ijk) - zone.gapMm;
+            b = std::min(b, std::max(g, l.axis->heightOf(world) - l.fillTopMm));
+        }
+        return float(b);
     }
 };
 
-/// The bone with the listed sockets filled below their old crests, at a world point (mm).
-float filledBone(const openvdb::FloatGrid& bone, const LossZone& zone, const openvdb::Vec3d& world) {
-    const auto& xf = bone.transform();
-    double b = openvdb::tools::BoxSampler::sample(bone.tree(), xf.worldToIndex(world));
-    for (const Listed& l : zone.listed) {
-        const double g = openvdb::tools::BoxSampler::sample(l.tooth->tree(), xf.worldToIndex(world)) - zone.gapMm;
-        b = std::min(b, std::max(g, l.axis->heightOf(world) - l.fillTopMm));
+/// Index box around a listed tooth holding every voxel its loss can change: the axis from the
+/// floor to a voxel over the old crest's top, widened by the loss's reach and the root's radius.
+openvdb::CoordBBox lossBox(const Listed& l, double crestTopMm, const openvdb::math::Transform& xf) {
+    double radius = 0;
+    for (double r : l.root.radiusMm) radius = std::max(radius, r);
+    radius += kLossReachMm;
+    openvdb::BBoxd box;
+    for (double h : {l.floorMm, crestTopMm + 3 * xf.voxelSize()[0]}) {
+        const openvdb::Vec3d c = xf.worldToIndex(l.axis->origin + l.axis->axis * h);
+        box.expand(c - openvdb::Vec3d(radius / xf.voxelSize()[0]));
+        box.expand(c + openvdb::Vec3d(radius / xf.voxelSize()[0]));
     }
-    return float(b);
+    return openvdb::CoordBBox(openvdb::Coord::floor(box.min()), openvdb::Coord::ceil(box.max()));
 }
 
 }  // namespace
@@ -103,10 +124,20 @@ openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::ma
             throw Error(s.str());
         }
         losses.push_back({unn, axis, crest.meanMm, 0, floor});
-        zone.listed.push_back({{&axis, crest.rootRadiusMm}, &axis, floor, crest.minMm, withExteriorReach(*teeth.at(unn), reachMm)});
+        const double top = *std::max_element(crest.heightsMm.begin(), crest.heightsMm.end());
+        zone.listed.push_back({{&axis, crest.rootRadiusMm}, &axis, floor, crest.minMm, withExteriorReach(*teeth.at(unn), reachMm), top});
+    }
+    // The teeth that bound the loss: those within its reach (the others cannot be nearer).
+    const auto& xf = bone.transform();
+    std::vector<openvdb::CoordBBox> reach;
+    for (const Listed& l : zone.listed) {
+        reach.push_back(lossBox(l, l.crestTopMm, xf));
+        reach.back().expand(int(std::ceil(kLossReachMm / xf.voxelSize()[0])));
     }
     for (const auto& [unn, axis] : axes) {
         if (std::find(listed.begin(), listed.end(), unn) != listed.end()) continue;
+        const openvdb::CoordBBox box = teeth.at(unn)->evalActiveVoxelBoundingBox();
+        if (std::none_of(reach.begin(), reach.end(), [&](const openvdb::CoordBBox& r) { return r.hasOverlap(box); })) continue;
         try {
             zone.others.push_back({&axis, crestAround(bone, *teeth.at(unn), axis, what).rootRadiusMm});
         } catch (const Error&) {
@@ -114,22 +145,21 @@ openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::ma
         }
     }
 
-    // Voxels whose value can change: the band where the bone drops, and where that band lands.
-    const auto& xf = bone.transform();
+    // Voxels whose value can change: bone (inside or in its band) near the listed crests.
     openvdb::MaskTree where(false);
-    for (auto it = bone.tree().cbeginValueOn(); it; ++it) {
-        const openvdb::Vec3d p = xf.indexToWorld(it.getCoord());
-        if (zone.dropAt(p).second <= 0) continue;
-        where.setValueOn(it.getCoord());
-        where.setValueOn(openvdb::Coord::round(xf.worldToIndex(zone.landing(p))));
-    }
-    openvdb::tools::dilateActiveValues(where, 1, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
-    auto lowered = rewriteLevelSet(bone, where, [&](const openvdb::Coord& ijk) {
-        const float here = bone.tree().getValue(ijk);
-        const openvdb::Vec3d x = xf.indexToWorld(ijk);
-        const auto [n, drop] = zone.dropAt(x);
-        if (drop <= 0) return here;
-        return std::max(here, filledBone(bone, zone, x + n->axis->axis * drop));
+    for (const Listed& l : zone.listed) where.fill(lossBox(l, l.crestTopMm, xf), true, true);
+    openvdb::MaskTree boneOrBand(bone.tree(), false, openvdb::TopologyCopy());
+    boneOrBand.topologyUnion(openvdb::tools::sdfInteriorMask(bone)->tree());
+    where.topologyIntersection(boneOrBand);
+    auto lowered = rewriteLevelSet(bone, std::move(where), [&]() -> VoxelValue {
+        auto filled = std::make_shared<FilledBone>(bone, zone);
+        return [&, filled](const openvdb::Coord& ijk) {
+            const float here = filled->boneAcc.getValue(ijk);
+            const openvdb::Vec3d x = xf.indexToWorld(ijk);
+            const auto [n, drop] = zone.dropAt(x);
+            if (drop <= 0) return here;
+            return std::max(here, (*filled)(x + n->axis->axis * drop));
+        };
     });
     for (CrestLoss& loss : losses)
         loss.crestAfterMm = crestAround(*lowered, *teeth.at(loss.unn), loss.axis, what).meanMm;

@@ -25,7 +25,7 @@ constexpr double kRoot = 1.5, kGap = 0.1, kApex = -9.0, kTop = 3.0;
 const int kUnns[] = {24, 25, 26};
 double toothX(int unn) { return 6.0 * (unn - 25); }
 
-JawLevelSets analyticJaw() {
+JawLevelSets sampleAnalyticJaw() {
     JawLevelSets j;
     const Vec3d lo(-10, -4, -13), hi(10, 4, 0);
     j.bone = test::sampleSdf(
@@ -41,6 +41,12 @@ JawLevelSets analyticJaw() {
                                        Vec3d(x - kRoot, -kRoot, kApex - kRoot), Vec3d(x + kRoot, kRoot, kTop + kRoot), kVoxel);
     }
     return j;
+}
+
+/// The jaw, sampled once: edits replace its grids rather than change them, so copies share them.
+JawLevelSets analyticJaw() {
+    static const JawLevelSets jaw = sampleAnalyticJaw();
+    return jaw;
 }
 
 EditList editsOf(const nlohmann::json& list) { return parseEdits({{"edits", list}}, "edits.json"); }
@@ -65,6 +71,16 @@ std::vector<double> crestRing(const openvdb::FloatGrid& bone, int unn) {
         tops.push_back(boneTopAt(bone, toothX(unn) + r * std::cos(phi), r * std::sin(phi)));
     }
     return tops;
+}
+
+/// Voxels of the jaw's box inside `after` but not `before` (every voxel, tiles included: a sign
+/// carried wrongly through an inactive region shows here).
+std::size_t voxelsTurnedInside(const openvdb::FloatGrid& before, const openvdb::FloatGrid& after) {
+    const openvdb::CoordBBox box(openvdb::Coord(-210, -90, -270), openvdb::Coord(210, 90, 30));
+    auto a = before.getConstAccessor(), b = after.getConstAccessor();
+    std::size_t n = 0;
+    for (auto it = box.begin(); it; ++it) n += a.getValue(*it) >= 0 && b.getValue(*it) < 0;
+    return n;
 }
 
 }  // namespace
@@ -100,6 +116,8 @@ TEST(JawEdits, BoneLossLowersTheCrestAroundTheListedTeethByItsDepth) {
     for (double z : {-3.0, -5.0, -8.0})
         EXPECT_NEAR(boneAt(*jaw.bone, Vec3d(toothX(24) + kRoot + kGap, 0, z)), boneAt(*before, Vec3d(toothX(24) + kRoot + kGap, 0, z)), 1e-4);
     EXPECT_NEAR(boneAt(*jaw.bone, Vec3d(toothX(24), 0, kApex - kRoot - kGap)), 0.0, 0.01);
+    // Bone is only taken away.
+    EXPECT_EQ(voxelsTurnedInside(*before, *jaw.bone), 0u);
     // The record measures the same drop on the grids.
     const auto& t = record.at("applied").at(0).at("teeth").at(0);
     EXPECT_EQ(t.at("tooth"), 24);
@@ -147,11 +165,15 @@ TEST(JawEdits, PdlThicknessEditSetsOneToothsPdl) {
 }
 
 TEST(JawEdits, AreDeterministic) {
-    const auto edits = editsOf({{{"op", "bone_loss"}, {"teeth", {24, 25}}, {"depth_mm", 1.5}},
+    const auto edits = editsOf({{{"op", "bone_loss"}, {"teeth", {24}}, {"depth_mm", 1.5}},
                                 {{"op", "extract"}, {"tooth", 26}, {"socket", "healed"}}});
     JawLevelSets a = analyticJaw(), b = analyticJaw();
     CarveOptions ca, cb;
-    EXPECT_EQ(applyEdits(edits, a, ca), applyEdits(edits, b, cb));
+    const auto withoutTimes = [](nlohmann::json record) {
+        for (auto& e : record.at("applied")) e.erase("seconds");
+        return record;
+    };
+    EXPECT_EQ(withoutTimes(applyEdits(edits, a, ca)), withoutTimes(applyEdits(edits, b, cb)));
     ASSERT_EQ(a.bone->activeVoxelCount(), b.bone->activeVoxelCount());
     auto acc = b.bone->getConstAccessor();
     for (auto it = a.bone->cbeginValueOn(); it; ++it) ASSERT_EQ(*it, acc.getValue(it.getCoord()));
