@@ -63,7 +63,7 @@ void addRunCommand(CLI::App& app, GlobalOptions& global) {
     cmd->add_option("--from-vdb", opt->fromVdb, "Resume from a carved level-set folder (e.g. an edited one)")
         ->check(CLI::ExistingDirectory);
     cmd->add_option("--edits", opt->edits,
-                    "JSON file of what-if edits (extract, bone_loss, pdl_thickness) applied before carving")
+                    "JSON file of what-if edits (extract, bone_loss, pdl_thickness; examples/edit_levelsets) applied before carving")
         ->check(CLI::ExistingFile);
     cmd->add_flag("!--no-memory-check", opt->memoryCheck,
                   "Run even when the memory estimate exceeds the available memory");

@@ -64,10 +64,29 @@ Edit readExtract(Entry& e) {
     return x;
 }
 
+/// Widest angular defect: a funnel wider than this is a horizontal loss.
+constexpr double kMaxDefectWidthMm = 5.0;
+
+Edit readAngularDefect(Entry& e) {
+    AngularDefectEdit x;
+    x.tooth = e.tooth(e.key("tooth"));
+    const auto& side = e.key("side");
+    bool known = false;
+    for (auto s : {AngularDefectEdit::Side::Mesial, AngularDefectEdit::Side::Distal, AngularDefectEdit::Side::Buccal,
+                   AngularDefectEdit::Side::Lingual})
+        if (side == sideName(s)) x.side = s, known = true;
+    if (!known) e.fail("'side' must be \"mesial\", \"distal\", \"buccal\" or \"lingual\"");
+    x.depthMm = e.number("depth_mm", 0, kMaxBoneLossMm);
+    x.widthMm = e.number("width_mm", 0, kMaxDefectWidthMm);
+    return x;
+}
+
 Edit readBoneLoss(Entry& e) {
+    if (e.json.contains("tooth") || e.json.contains("side")) return readAngularDefect(e);
     BoneLossEdit x;
     const auto& teeth = e.key("teeth");
-    if (!teeth.is_array() || teeth.empty()) e.fail("'teeth' must be a non-empty list of UNNs");
+    if (!teeth.is_array() || teeth.empty())
+        e.fail("'teeth' must be a non-empty list of UNNs (or, for an angular defect, 'tooth' and 'side')");
     for (const auto& t : teeth) x.teeth.push_back(e.tooth(t));
     std::sort(x.teeth.begin(), x.teeth.end());
     if (std::adjacent_find(x.teeth.begin(), x.teeth.end()) != x.teeth.end()) e.fail("'teeth' names a tooth twice");
@@ -108,6 +127,16 @@ std::vector<int> teethOf(const Edit& edit) {
 std::string entryName(const std::string& file, std::size_t i) { return file + ": edits[" + std::to_string(i) + "]"; }
 
 }  // namespace
+
+std::string sideName(AngularDefectEdit::Side side) {
+    switch (side) {
+        case AngularDefectEdit::Side::Mesial: return "mesial";
+        case AngularDefectEdit::Side::Distal: return "distal";
+        case AngularDefectEdit::Side::Buccal: return "buccal";
+        case AngularDefectEdit::Side::Lingual: return "lingual";
+    }
+    return "";
+}
 
 EditList parseEdits(const nlohmann::json& document, const std::string& name) {
     if (!document.is_object() || !document.contains("edits") || !document.at("edits").is_array())
@@ -173,6 +202,12 @@ nlohmann::json toJson(const EditList& edits) {
                     list.push_back({{"op", "extract"}, {"tooth", e.tooth}, {"socket", e.healed ? "healed" : "empty"}});
                 else if constexpr (std::is_same_v<T, BoneLossEdit>)
                     list.push_back({{"op", "bone_loss"}, {"teeth", e.teeth}, {"depth_mm", e.depthMm}});
+                else if constexpr (std::is_same_v<T, AngularDefectEdit>)
+                    list.push_back({{"op", "bone_loss"},
+                                    {"tooth", e.tooth},
+                                    {"side", sideName(e.side)},
+                                    {"depth_mm", e.depthMm},
+                                    {"width_mm", e.widthMm}});
                 else
                     list.push_back({{"op", "pdl_thickness"},
                                     {"tooth", e.tooth},

@@ -1,6 +1,7 @@
 // Clinical what-if edits (issue #24) as plain data, read from an edit file:
 //   {"edits": [
 //     {"op": "bone_loss", "teeth": [23, 24, 25, 26], "depth_mm": 2.0},
+//     {"op": "bone_loss", "tooth": 27, "side": "distal", "depth_mm": 3.0, "width_mm": 1.5},
 //     {"op": "extract", "tooth": 30, "socket": "healed"},
 //     {"op": "pdl_thickness", "tooth": 24, "thickness_mm": 0.3}
 //   ]}
@@ -30,13 +31,25 @@ struct BoneLossEdit {
     double depthMm = 0;
 };
 
+/// An angular (vertical) defect: on one side of a root the crest drops by depthMm at the root,
+/// rising to none widthMm away from it (a funnel along the root).
+struct AngularDefectEdit {
+    enum class Side { Mesial, Distal, Buccal, Lingual };
+    int tooth = 0;
+    Side side = Side::Mesial;
+    double depthMm = 0, widthMm = 0;
+};
+
 /// A tooth's PDL thickness, uniform or as a cervical / mid-root / apical profile (mm).
 struct PdlThicknessEdit {
     int tooth = 0;
     double cervicalMm = 0, midRootMm = 0, apicalMm = 0;
 };
 
-using Edit = std::variant<ExtractEdit, BoneLossEdit, PdlThicknessEdit>;
+using Edit = std::variant<ExtractEdit, BoneLossEdit, AngularDefectEdit, PdlThicknessEdit>;
+
+/// "mesial", "distal", "buccal", "lingual".
+std::string sideName(AngularDefectEdit::Side side);
 
 /// The edits of one file, in order, and the file they came from (named in messages and run.json).
 struct EditList {

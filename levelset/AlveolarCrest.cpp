@@ -35,8 +35,10 @@ CrestProfile crestAround(const openvdb::FloatGrid& bone, const openvdb::FloatGri
             const int bin = axis.sectorOf(p, kCrestBins);
             top[bin] = std::max(top[bin], axis.heightOf(p));
         }
-    for (double h : top)
+    for (double h : top) {
+        crest.sectorHeightsMm.push_back(std::isfinite(h) ? h : std::numeric_limits<double>::quiet_NaN());
         if (std::isfinite(h)) crest.heightsMm.push_back(h);
+    }
     if (crest.heightsMm.empty()) throw Error(what + ": no bone lies within " + std::to_string(kCrestReachMm) + " mm of the tooth");
     std::vector<double> sorted = crest.heightsMm;
     std::sort(sorted.begin(), sorted.end());

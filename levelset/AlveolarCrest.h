@@ -14,6 +14,7 @@ namespace jawmesh {
 
 struct CrestProfile {
     std::vector<double> heightsMm;  ///< per azimuth bin with bone: the crest's height along the axis
+    std::vector<double> sectorHeightsMm;  ///< the same for every bin (LongAxis::sectorOf), NaN without bone
     double minMm = 0;               ///< the lowest bin
     double lowMm = 0;               ///< a low crest height: the 10th percentile of the bins
     double meanMm = 0;              ///< mean of the bins

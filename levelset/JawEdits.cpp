@@ -65,6 +65,54 @@ nlohmann::json apply(EditContext& ctx, const BoneLossEdit& e) {
     return {{"op", "bone_loss"}, {"depth_mm", e.depthMm}, {"teeth", teeth}};
 }
 
+/// Whether `unn`'s mesial neighbour has the next UNN (the jaw's left half: 1-8, 17-24).
+bool mesialIsNext(int unn) { return (unn >= 1 && unn <= 8) || (unn >= 17 && unn <= 24); }
+
+/// A unit vector across tooth `unn`'s axis towards `side`: mesial towards the neighbour nearer the
+/// midline (or away from the other one), buccal away from the centre of the jaw's teeth.
+openvdb::Vec3d sideDirection(int unn, AngularDefectEdit::Side side, const std::map<int, LongAxis>& axes,
+                             const std::string& where) {
+    const LongAxis& a = axes.at(unn);
+    const auto across = [&](openvdb::Vec3d v) { return (v - a.axis * v.dot(a.axis)).unit(); };
+    const int mesial = mesialIsNext(unn) ? unn + 1 : unn - 1, distal = mesialIsNext(unn) ? unn - 1 : unn + 1;
+    openvdb::Vec3d toMesial;
+    if (axes.count(mesial)) toMesial = across(axes.at(mesial).origin - a.origin);
+    else if (axes.count(distal)) toMesial = across(a.origin - axes.at(distal).origin);
+    else throw Error(where + ": tooth " + std::to_string(unn) + " has no neighbour to tell mesial from distal by");
+    openvdb::Vec3d centre(0, 0, 0);
+    for (const auto& [other, axis] : axes) centre += axis.origin;
+    centre /= double(axes.size());
+    openvdb::Vec3d buccal = a.axis.cross(toMesial).unit();
+    if (buccal.dot(a.origin - centre) < 0) buccal = -buccal;
+    switch (side) {
+        case AngularDefectEdit::Side::Mesial: return toMesial;
+        case AngularDefectEdit::Side::Distal: return -toMesial;
+        case AngularDefectEdit::Side::Buccal: return buccal;
+        case AngularDefectEdit::Side::Lingual: return -buccal;
+    }
+    return toMesial;
+}
+
+nlohmann::json apply(EditContext& ctx, const AngularDefectEdit& e) {
+    std::map<int, LongAxis> axes;
+    for (const auto& [unn, grid] : ctx.levelSets.teeth) axes[unn] = ctx.axisOf(unn);
+    LossShape shape{sideDirection(e.tooth, e.side, axes, ctx.where), e.widthMm};
+    std::vector<CrestLoss> losses;
+    ctx.levelSets.bone = lowerCrest(*ctx.levelSets.bone, ctx.levelSets.teeth, axes, {e.tooth}, e.depthMm,
+                                     ctx.carve.gapBridgeMm, losses, ctx.where, shape);
+    const CrestLoss& l = losses.at(0);
+    return {{"op", "bone_loss"},
+            {"tooth", e.tooth},
+            {"side", sideName(e.side)},
+            {"side_direction", {shape.side->x(), shape.side->y(), shape.side->z()}},
+            {"depth_mm", e.depthMm},
+            {"width_mm", e.widthMm},
+            {"axis", toJson(l.axis)},
+            {"crest_drop_at_side_mm", l.sideDropMm},
+            {"crest_drop_mean_mm", l.crestBeforeMm - l.crestAfterMm},
+            {"floor_mm", l.floorMm}};
+}
+
 nlohmann::json apply(EditContext& ctx, const PdlThicknessEdit& e) {
     ctx.carve.toothPdl[e.tooth] = PdlProfile{e.cervicalMm, e.midRootMm, e.apicalMm};
     return {{"op", "pdl_thickness"},

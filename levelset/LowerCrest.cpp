@@ -35,13 +35,24 @@ struct Listed {
     double fillTopMm = 0;        ///< the socket fill ends at the old crest's lowest point
     openvdb::FloatGrid::Ptr tooth;  ///< its distance out past the gap: the socket fill is {T < gap}
     double crestTopMm = 0;          ///< the old crest's highest sector
+    double rampMm = 0;              ///< the depth falls to none over this far below the new crest
 };
 
 /// Where and how far the bone drops.
 struct LossZone {
     std::vector<Listed> listed;
     std::vector<Footprint> others;
-    double depthMm = 0, rampMm = 0, gapMm = 0;
+    LossShape shape;
+    double depthMm = 0, gapMm = 0;
+
+    /// Share of the depth at x around the listed root n for an angular defect: full at the root
+    /// towards the side, none the defect's width out or 60 degrees around.
+    double defectShare(const Listed& n, double fromRoot, const openvdb::Vec3d& x) const {
+        openvdb::Vec3d across = x - n.axis->origin;
+        across -= n.axis->axis * across.dot(n.axis->axis);
+        const double c = across.length() > 1e-9 ? across.unit().dot(*shape.side) : 1.0;
+        return std::clamp(1.0 - fromRoot / shape.widthMm, 0.0, 1.0) * std::clamp((c - 0.5) / 0.5, 0.0, 1.0);
+    }
 
     /// The nearest listed root to x and the lateral share of the depth.
     std::pair<const Listed*, double> lateral(const openvdb::Vec3d& x) const {
@@ -51,6 +62,7 @@ struct LossZone {
             if (const double r = l.root.distanceOf(x); r < nearL) nearL = r, n = &l;
         for (const Footprint& o : others) nearU = std::min(nearU, o.distanceOf(x));
         const double towardsOthers = std::clamp(1.0 - (nearL - nearU) / kLossTaperMm, 0.0, 1.0);
+        if (n && shape.side) return {n, towardsOthers * defectShare(*n, std::max(nearL, 0.0), x)};
         const double reach = std::clamp((kLossReachMm - nearL) / kLossTaperMm, 0.0, 1.0);
         return {n, towardsOthers * reach};
     }
@@ -58,7 +70,7 @@ struct LossZone {
     std::pair<const Listed*, double> dropAt(const openvdb::Vec3d& x) const {
         const auto [n, share] = lateral(x);
         if (!n || share <= 0) return {n, 0.0};
-        const double ramp = std::clamp((n->axis->heightOf(x) - n->floorMm) / rampMm, 0.0, 1.0);
+        const double ramp = std::clamp((n->axis->heightOf(x) - n->floorMm) / n->rampMm, 0.0, 1.0);
         return {n, depthMm * share * ramp};
     }
 };
@@ -88,10 +100,10 @@ struct FilledBone {
 
 /// Index box around a listed tooth holding every voxel its loss can change: the axis from the
 /// floor to a voxel over the old crest's top, widened by the loss's reach and the root's radius.
-openvdb::CoordBBox lossBox(const Listed& l, double crestTopMm, const openvdb::math::Transform& xf) {
+openvdb::CoordBBox lossBox(const Listed& l, double crestTopMm, double reachMm, const openvdb::math::Transform& xf) {
     double radius = 0;
     for (double r : l.root.radiusMm) radius = std::max(radius, r);
-    radius += kLossReachMm;
+    radius += reachMm;
     openvdb::BBoxd box;
     for (double h : {l.floorMm, crestTopMm + 3 * xf.voxelSize()[0]}) {
         const openvdb::Vec3d c = xf.worldToIndex(l.axis->origin + l.axis->axis * h);
@@ -105,33 +117,40 @@ openvdb::CoordBBox lossBox(const Listed& l, double crestTopMm, const openvdb::ma
 
 openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::map<int, openvdb::FloatGrid::ConstPtr>& teeth,
                                    const std::map<int, LongAxis>& axes, const std::vector<int>& listed, double depthMm,
-                                   double gapMm, std::vector<CrestLoss>& losses, const std::string& what) {
+                                   double gapMm, std::vector<CrestLoss>& losses, const std::string& what,
+                                   const LossShape& shape) {
     LossZone zone;
+    zone.shape = shape;
+    const double lossReach = shape.side ? shape.widthMm : kLossReachMm;
     zone.depthMm = depthMm;
-    zone.rampMm = kLossRampDepths * depthMm;
     zone.gapMm = gapMm;
     const double reachMm = gapMm + 2 * bandHalfWidthMm(bone);
     losses.clear();
+    std::vector<CrestProfile> crests;  // before the loss, one per listed tooth
     for (int unn : listed) {
         const LongAxis& axis = axes.at(unn);
         const CrestProfile crest = crestAround(bone, *teeth.at(unn), axis, what + ": tooth " + std::to_string(unn));
-        const double floor = crest.minMm - depthMm - zone.rampMm;
-        if (floor < crest.apexMm + kLossMinRootInBoneMm) {
+        // The ramp is kLossRampDepths depths long, shorter on a short root, never under kLossMinRampMm.
+        const double room = crest.minMm - depthMm - (crest.apexMm + kLossMinRootInBoneMm);
+        const double ramp = std::min(kLossRampDepths * depthMm, room);
+        if (ramp < kLossMinRampMm) {
             std::ostringstream s;
-            s << what << ": tooth " << unn << "'s root reaches " << crest.minMm - crest.apexMm
-              << " mm below its crest; a loss of " << depthMm << " mm (tapering over " << zone.rampMm
-              << " mm below it) would leave its apex without bone";
+            s << what << ": tooth " << unn << "'s root reaches " << crest.minMm - crest.apexMm << " mm below its crest; a loss of "
+              << depthMm << " mm would leave less than " << kLossMinRootInBoneMm + kLossMinRampMm << " mm of it in bone";
             throw Error(s.str());
         }
+        const double floor = crest.minMm - depthMm - ramp;
         losses.push_back({unn, axis, crest.meanMm, 0, floor});
+        crests.push_back(crest);
         const double top = *std::max_element(crest.heightsMm.begin(), crest.heightsMm.end());
-        zone.listed.push_back({{&axis, crest.rootRadiusMm}, &axis, floor, crest.minMm, withExteriorReach(*teeth.at(unn), reachMm), top});
+        zone.listed.push_back(
+            {{&axis, crest.rootRadiusMm}, &axis, floor, crest.minMm, withExteriorReach(*teeth.at(unn), reachMm), top, ramp});
     }
     // The teeth that bound the loss: those within its reach (the others cannot be nearer).
     const auto& xf = bone.transform();
     std::vector<openvdb::CoordBBox> reach;
     for (const Listed& l : zone.listed) {
-        reach.push_back(lossBox(l, l.crestTopMm, xf));
+        reach.push_back(lossBox(l, l.crestTopMm, lossReach, xf));
         reach.back().expand(int(std::ceil(kLossReachMm / xf.voxelSize()[0])));
     }
     for (const auto& [unn, axis] : axes) {
@@ -147,7 +166,7 @@ openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::ma
 
     // Voxels whose value can change: bone (inside or in its band) near the listed crests.
     openvdb::MaskTree where(false);
-    for (const Listed& l : zone.listed) where.fill(lossBox(l, l.crestTopMm, xf), true, true);
+    for (const Listed& l : zone.listed) where.fill(lossBox(l, l.crestTopMm, lossReach, xf), true, true);
     openvdb::MaskTree boneOrBand(bone.tree(), false, openvdb::TopologyCopy());
     boneOrBand.topologyUnion(openvdb::tools::sdfInteriorMask(bone)->tree());
     where.topologyIntersection(boneOrBand);
@@ -161,8 +180,16 @@ openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::ma
             return std::max(here, (*filled)(x + n->axis->axis * drop));
         };
     });
-    for (CrestLoss& loss : losses)
-        loss.crestAfterMm = crestAround(*lowered, *teeth.at(loss.unn), loss.axis, what).meanMm;
+    for (std::size_t i = 0; i < losses.size(); ++i) {
+        CrestLoss& loss = losses[i];
+        const CrestProfile& before = crests[i];
+        const CrestProfile after = crestAround(*lowered, *teeth.at(loss.unn), loss.axis, what);
+        loss.crestAfterMm = after.meanMm;
+        if (shape.side) {
+            const int sector = loss.axis.sectorOf(loss.axis.origin + *shape.side, kCrestBins);
+            loss.sideDropMm = before.sectorHeightsMm[std::size_t(sector)] - after.sectorHeightsMm[std::size_t(sector)];
+        }
+    }
     return lowered;
 }
 

@@ -30,11 +30,15 @@ TEST(EditFile, ReadsTheIssuesExampleAndRoundTrips) {
         {"op": "extract", "tooth": 30, "socket": "healed"},
         {"op": "pdl_thickness", "tooth": 24, "thickness_mm": 0.3},
         {"op": "pdl_thickness", "tooth": 19, "profile_mm": {"cervical": 0.3, "mid_root": 0.2, "apical": 0.25}},
-        {"op": "extract", "tooth": 31}
+        {"op": "extract", "tooth": 31},
+        {"op": "bone_loss", "tooth": 27, "side": "distal", "depth_mm": 3.0, "width_mm": 1.5}
     ]})";
     const EditList list = readEditFile(path.string());
     std::filesystem::remove(path);
-    ASSERT_EQ(list.edits.size(), 5u);
+    ASSERT_EQ(list.edits.size(), 6u);
+    const auto& defect = std::get<AngularDefectEdit>(list.edits[5]);
+    EXPECT_EQ(defect.side, AngularDefectEdit::Side::Distal);
+    EXPECT_EQ(defect.widthMm, 1.5);
     const auto& loss = std::get<BoneLossEdit>(list.edits[0]);
     EXPECT_EQ(loss.teeth, (std::vector<int>{23, 24, 25, 26}));
     EXPECT_EQ(loss.depthMm, 2.0);
@@ -45,9 +49,9 @@ TEST(EditFile, ReadsTheIssuesExampleAndRoundTrips) {
     EXPECT_EQ(extractedTeeth(list), (std::vector<int>{30, 31}));
     const nlohmann::json recorded = toJson(list);
     EXPECT_EQ(toJson(parseEdits({{"edits", recorded.at("edits")}}, "again")).at("edits"), recorded.at("edits"));
-    EXPECT_NO_THROW(requireEditsFit(list, {19, 23, 24, 25, 26, 30, 31}));
+    EXPECT_NO_THROW(requireEditsFit(list, {19, 23, 24, 25, 26, 27, 30, 31}));
     try {
-        requireEditsFit(list, {19, 23, 24, 25, 30, 31});
+        requireEditsFit(list, {19, 23, 24, 25, 27, 30, 31});
         FAIL() << "tooth 26 is missing";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("edits[0]: tooth 26 is not in this jaw"), std::string::npos) << e.what();
@@ -65,7 +69,11 @@ TEST(EditFile, RefusesMalformedEntriesNamingFileAndEntry) {
     EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "teeth": [3], "depth": 2}]})").find("'depth_mm' is missing"),
               std::string::npos);
     EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "teeth": [3, 3], "depth_mm": 2}]})").find("twice"), std::string::npos);
-    EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "teeth": [3], "depth_mm": 2, "side": "mesial"}]})").find("unknown key 'side'"),
+    EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "teeth": [3], "depth_mm": 2, "width": 1}]})").find("unknown key 'width'"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "tooth": 3, "side": "up", "depth_mm": 2, "width_mm": 1}]})").find("'side' must be"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "bone_loss", "tooth": 3, "side": "buccal", "depth_mm": 2}]})").find("'width_mm' is missing"),
               std::string::npos);
     EXPECT_NE(refusal(R"({"edits": [{"op": "pdl_thickness", "tooth": 3}]})").find("either 'thickness_mm' or 'profile_mm'"),
               std::string::npos);

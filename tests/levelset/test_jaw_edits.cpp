@@ -124,6 +124,28 @@ TEST(JawEdits, BoneLossLowersTheCrestAroundTheListedTeethByItsDepth) {
     EXPECT_NEAR(t.at("crest_drop_mm").get<double>(), 2.0, 0.1);
 }
 
+TEST(JawEdits, AngularDefectIsAFunnelOnOneSideOfTheRoot) {
+    JawLevelSets jaw = analyticJaw();
+    const auto before = jaw.bone;
+    CarveOptions carve;
+    const nlohmann::json record = applyEdits(
+        editsOf({{{"op", "bone_loss"}, {"tooth", 25}, {"side", "mesial"}, {"depth_mm", 3.0}, {"width_mm", 1.5}}}), jaw, carve);
+    const auto& e = record.at("applied").at(0);
+    // Mesial of 25 is towards 24 (the midline lies between 24 and 25): -x here.
+    EXPECT_NEAR(e.at("side_direction")[0].get<double>(), -1.0, 1e-3);
+    // The funnel: 3 mm deep at the root, none 1.5 mm out from it; nothing on the other sides.
+    const double root = kRoot + kGap;
+    for (double out : {0.2, 0.6, 1.0}) {
+        const double expected = -3.0 * (1.0 - (out + kGap) / 1.5);
+        EXPECT_NEAR(boneTopAt(*jaw.bone, -(root + out), 0), expected, 0.1) << out << " mm out";
+    }
+    EXPECT_NEAR(boneTopAt(*jaw.bone, -(root + 1.6), 0), 0.0, 0.01);
+    EXPECT_NEAR(boneTopAt(*jaw.bone, root + 0.2, 0), 0.0, 0.01);
+    EXPECT_NEAR(boneTopAt(*jaw.bone, 0, root + 0.2), 0.0, 0.01);
+    EXPECT_EQ(voxelsTurnedInside(*before, *jaw.bone), 0u);
+    EXPECT_GT(e.at("crest_drop_at_side_mm").get<double>(), 1.5);
+}
+
 TEST(JawEdits, HealedExtractionFillsTheSocketWithBoneUpToTheCrest) {
     JawLevelSets jaw = analyticJaw();
     const auto before = jaw.bone;
@@ -192,7 +214,7 @@ TEST(JawEdits, RefuseWhatCannotApplyNamingTheEntry) {
     };
     EXPECT_NE(refused({{{"op", "extract"}, {"tooth", 24}}, {{"op", "extract"}, {"tooth", 30}}}).find("edits.json: edits[1]: tooth 30 is not in this jaw"),
               std::string::npos);
-    const std::string deep = refused({{{"op", "bone_loss"}, {"teeth", {25}}, {"depth_mm", 6.0}}});
+    const std::string deep = refused({{{"op", "bone_loss"}, {"teeth", {25}}, {"depth_mm", 9.5}}});
     EXPECT_NE(deep.find("edits.json: edits[0]"), std::string::npos) << deep;
-    EXPECT_NE(deep.find("apex"), std::string::npos) << deep;
+    EXPECT_NE(deep.find("of it in bone"), std::string::npos) << deep;
 }
