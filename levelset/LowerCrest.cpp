@@ -99,13 +99,15 @@ struct FilledBone {
 };
 
 /// Index box around a listed tooth holding every voxel its loss can change: the axis from the
-/// floor to a voxel over the old crest's top, widened by the loss's reach and the root's radius.
-openvdb::CoordBBox lossBox(const Listed& l, double crestTopMm, double reachMm, const openvdb::math::Transform& xf) {
+/// floor to well over the old crest's top near the root (bone farther out, a lingual plate, may
+/// rise higher), widened by the loss's reach and the root's radius.
+openvdb::CoordBBox lossBox(const Listed& l, double crestTopMm, double reachMm, double depthMm,
+                           const openvdb::math::Transform& xf) {
     double radius = 0;
     for (double r : l.root.radiusMm) radius = std::max(radius, r);
     radius += reachMm;
     openvdb::BBoxd box;
-    for (double h : {l.floorMm, crestTopMm + 3 * xf.voxelSize()[0]}) {
+    for (double h : {l.floorMm, crestTopMm + depthMm + kLossReachMm}) {
         const openvdb::Vec3d c = xf.worldToIndex(l.axis->origin + l.axis->axis * h);
         box.expand(c - openvdb::Vec3d(radius / xf.voxelSize()[0]));
         box.expand(c + openvdb::Vec3d(radius / xf.voxelSize()[0]));
@@ -150,7 +152,7 @@ openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::ma
     const auto& xf = bone.transform();
     std::vector<openvdb::CoordBBox> reach;
     for (const Listed& l : zone.listed) {
-        reach.push_back(lossBox(l, l.crestTopMm, lossReach, xf));
+        reach.push_back(lossBox(l, l.crestTopMm, lossReach, depthMm, xf));
         reach.back().expand(int(std::ceil(kLossReachMm / xf.voxelSize()[0])));
     }
     for (const auto& [unn, axis] : axes) {
@@ -166,7 +168,7 @@ openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::ma
 
     // Voxels whose value can change: bone (inside or in its band) near the listed crests.
     openvdb::MaskTree where(false);
-    for (const Listed& l : zone.listed) where.fill(lossBox(l, l.crestTopMm, lossReach, xf), true, true);
+    for (const Listed& l : zone.listed) where.fill(lossBox(l, l.crestTopMm, lossReach, depthMm, xf), true, true);
     openvdb::MaskTree boneOrBand(bone.tree(), false, openvdb::TopologyCopy());
     boneOrBand.topologyUnion(openvdb::tools::sdfInteriorMask(bone)->tree());
     where.topologyIntersection(boneOrBand);
