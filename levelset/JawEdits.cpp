@@ -13,7 +13,7 @@
 namespace jawmesh {
 namespace {
 
-/// A tooth counts as in contact with the bone where the bone's level set is under this (mm).
+/// A tooth's surface touches the bone where the bone's band is under this, mm (ToothLongAxis.h).
 constexpr double kAxisContactMm = 0.2;
 
 nlohmann::json toJson(const LongAxis& a) {
@@ -29,6 +29,12 @@ struct EditContext {
         const auto given = carve.axes.find(unn);
         return toothLongAxis(*levelSets.teeth.at(unn), *levelSets.bone, kAxisContactMm,
                              given != carve.axes.end() ? &given->second : nullptr);
+    }
+    /// Every tooth's axis (a loss is bounded by the teeth it does not list).
+    std::map<int, LongAxis> allAxes() const {
+        std::map<int, LongAxis> axes;
+        for (const auto& [unn, grid] : levelSets.teeth) axes[unn] = axisOf(unn);
+        return axes;
     }
 };
 
@@ -49,8 +55,7 @@ nlohmann::json apply(EditContext& ctx, const ExtractEdit& e) {
 }
 
 nlohmann::json apply(EditContext& ctx, const BoneLossEdit& e) {
-    std::map<int, LongAxis> axes;
-    for (const auto& [unn, grid] : ctx.levelSets.teeth) axes[unn] = ctx.axisOf(unn);
+    const std::map<int, LongAxis> axes = ctx.allAxes();
     std::vector<CrestLoss> losses;
     ctx.levelSets.bone = lowerCrest(*ctx.levelSets.bone, ctx.levelSets.teeth, axes, e.teeth, e.depthMm,
                                      ctx.carve.gapBridgeMm, losses, ctx.where);
@@ -94,8 +99,7 @@ openvdb::Vec3d sideDirection(int unn, AngularDefectEdit::Side side, const std::m
 }
 
 nlohmann::json apply(EditContext& ctx, const AngularDefectEdit& e) {
-    std::map<int, LongAxis> axes;
-    for (const auto& [unn, grid] : ctx.levelSets.teeth) axes[unn] = ctx.axisOf(unn);
+    const std::map<int, LongAxis> axes = ctx.allAxes();
     LossShape shape{sideDirection(e.tooth, e.side, axes, ctx.where), e.widthMm};
     std::vector<CrestLoss> losses;
     ctx.levelSets.bone = lowerCrest(*ctx.levelSets.bone, ctx.levelSets.teeth, axes, {e.tooth}, e.depthMm,

@@ -9,6 +9,8 @@
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetUtil.h>
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <limits>
 #include <memory>
@@ -22,14 +24,21 @@ namespace {
 struct Footprint {
     const LongAxis* axis = nullptr;
     std::vector<double> radiusMm;
-    double distanceOf(const openvdb::Vec3d& x) const {
-        return axis->lateralOf(x) - radiusMm[std::size_t(axis->sectorOf(x, kCrestBins))];
+    double widestMm = 0;  ///< the largest of radiusMm
+    Footprint(const LongAxis* a, std::vector<double> radius) : axis(a), radiusMm(std::move(radius)) {
+        for (double r : radiusMm) widestMm = std::max(widestMm, r);
+    }
+    /// The distance from x, or `limit` when it cannot be less (skips the sector's angle).
+    double distanceOf(const openvdb::Vec3d& x, double limit = std::numeric_limits<double>::infinity()) const {
+        const double lateral = axis->lateralOf(x);
+        if (lateral - widestMm >= limit) return limit;
+        return lateral - radiusMm[std::size_t(axis->sectorOf(x, kCrestBins))];
     }
 };
 
 /// A listed tooth as the loss sees it.
 struct Listed {
-    Footprint root;
+    Footprint root{nullptr, {}};
     const LongAxis* axis = nullptr;
     double floorMm = 0;          ///< nothing moves below this height
     double fillTopMm = 0;        ///< the socket fill ends at the old crest's lowest point
@@ -59,8 +68,9 @@ struct LossZone {
         double nearL = std::numeric_limits<double>::infinity(), nearU = nearL;
         const Listed* n = nullptr;
         for (const Listed& l : listed)
-            if (const double r = l.root.distanceOf(x); r < nearL) nearL = r, n = &l;
-        for (const Footprint& o : others) nearU = std::min(nearU, o.distanceOf(x));
+            if (const double r = l.root.distanceOf(x, nearL); r < nearL) nearL = r, n = &l;
+        // An unlisted root no nearer than the nearest listed one leaves the depth whole.
+        for (const Footprint& o : others) nearU = std::min(nearU, o.distanceOf(x, std::min(nearU, nearL)));
         const double towardsOthers = std::clamp(1.0 - (nearL - nearU) / kLossTaperMm, 0.0, 1.0);
         if (n && shape.side) return {n, towardsOthers * defectShare(*n, std::max(nearL, 0.0), x)};
         const double reach = std::clamp((kLossReachMm - nearL) / kLossTaperMm, 0.0, 1.0);
@@ -145,9 +155,11 @@ openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::ma
         losses.push_back({unn, axis, crest.meanMm, 0, floor});
         crests.push_back(crest);
         const double top = *std::max_element(crest.heightsMm.begin(), crest.heightsMm.end());
-        zone.listed.push_back(
-            {{&axis, crest.rootRadiusMm}, &axis, floor, crest.minMm, withExteriorReach(*teeth.at(unn), reachMm), top, ramp});
+        zone.listed.push_back({{&axis, crest.rootRadiusMm}, &axis, floor, crest.minMm, nullptr, top, ramp});
     }
+    // The socket fills (closest-point propagation, serial each): the listed teeth in parallel.
+    tbb::parallel_for(std::size_t(0), listed.size(),
+                      [&](std::size_t i) { zone.listed[i].tooth = withExteriorReach(*teeth.at(listed[i]), reachMm); });
     // The teeth that bound the loss: those within its reach (the others cannot be nearer).
     const auto& xf = bone.transform();
     std::vector<openvdb::CoordBBox> reach;
