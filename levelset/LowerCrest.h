@@ -58,8 +58,8 @@ struct LossShape {
 /// dilation (CarveOptions::gapBridgeMm). Fills `losses`, one per listed tooth. Throws
 /// Error("<what>: ...") when a listed tooth has no crest (no bone near it) or the loss would leave
 /// less than kLossMinRootInBoneMm + kLossMinRampMm of its root in bone.
-/// Cost: an offset of each listed tooth, the bone's band near the listed crests in parallel, a
-/// flood fill of the bone grid.
+/// Cost: a closest-point propagation around each listed tooth (in parallel), every bone voxel of
+/// the zone evaluated in parallel (17 s for four incisors of the shared mandible).
 openvdb::FloatGrid::Ptr lowerCrest(const openvdb::FloatGrid& bone, const std::map<int, openvdb::FloatGrid::ConstPtr>& teeth,
                                    const std::map<int, LongAxis>& axes, const std::vector<int>& listed, double depthMm,
                                    double gapMm, std::vector<CrestLoss>& losses, const std::string& what,
