@@ -133,14 +133,17 @@ TEST(RunEdits, EditOnACarvedFolderGivesTheRunsMeshAndKeepsItsHistory) {
 TEST(RunEdits, BatchAppliesTheEditsToEveryCaseAndHashesThem) {
     const fs::path dir = test::scratchDir("batch-edits");
     ASSERT_EQ(test::runJawmesh("-q phantom " + (dir / "data" / "p1").string() + " --teeth 2", dir / "phantom.log").exitCode, 0);
-    std::ofstream(dir / "e.json") << R"({"edits": [{"op": "extract", "tooth": 25}]})";
+    // A bone loss too: this test is the edits' run under the sanitizers (quickstart.sh robustness).
+    std::ofstream(dir / "e.json") << R"({"edits": [{"op": "bone_loss", "teeth": [24], "depth_mm": 1.0},
+                                                   {"op": "extract", "tooth": 25, "socket": "healed"}]})";
     const test::CliResult r = test::runJawmesh("-q batch " + (dir / "data").string() + " -o " + (dir / "out").string() +
                                                    " --config " + test::fastConfig() + " --edits " + (dir / "e.json").string(),
                                                dir / "batch.log");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_EQ(readJson(dir / "out" / "options.json").at("edits")[0].at("tooth"), 25);
+    EXPECT_EQ(readJson(dir / "out" / "options.json").at("edits")[1].at("tooth"), 25);
     const nlohmann::json run = readJson(dir / "out" / "p1" / "mandible" / "run.json");
-    EXPECT_EQ(run.at("edits")[0].at("applied")[0].at("op"), "extract");
+    EXPECT_EQ(run.at("edits")[0].at("applied")[1].at("op"), "extract");
+    EXPECT_NEAR(run.at("edits")[0].at("applied")[0].at("teeth")[0].at("crest_drop_mm").get<double>(), 1.0, 0.1);
     EXPECT_GT(run.at("mesh").at("tets").get<std::size_t>(), 0u);
     for (const auto& t : run.at("carve").at("summary").at("teeth")) EXPECT_NE(t.at("unn"), 25);
 }
