@@ -2,6 +2,7 @@
 #include "FuzzTargets.h"
 
 #include "cli/RunOptions.h"
+#include "io/Edits.h"
 #include "io/Error.h"
 #include "io/LabelRoles.h"
 #include "io/LabelVolume.h"
@@ -99,6 +100,37 @@ bool configJson(const std::string& input) {
     return options.voxelSizeMm > 0 && options.bandVoxels >= 1 && options.carve.pdlRatio >= 0 && options.carve.pdlRatio <= 1;
 }
 
+bool editsJson(const std::string& input) {
+    const std::string path = scratchFile(input, "-edits.json");
+    EditList list;
+    try {
+        list = readEditFile(path);
+    } catch (const Error&) {
+        std::filesystem::remove(path);
+        return true;
+    }
+    std::filesystem::remove(path);
+    const auto positive = [](double x) { return std::isfinite(x) && x > 0; };
+    for (const Edit& edit : list.edits) {
+        const bool ok = std::visit(
+            [&](const auto& e) {
+                using T = std::decay_t<decltype(e)>;
+                if constexpr (std::is_same_v<T, BoneLossEdit>)
+                    return !e.teeth.empty() && positive(e.depthMm) &&
+                           std::all_of(e.teeth.begin(), e.teeth.end(), [](int u) { return isValidUnn(u); });
+                else if constexpr (std::is_same_v<T, AngularDefectEdit>)
+                    return isValidUnn(e.tooth) && positive(e.depthMm) && positive(e.widthMm);
+                else if constexpr (std::is_same_v<T, PdlThicknessEdit>)
+                    return isValidUnn(e.tooth) && positive(e.cervicalMm) && positive(e.midRootMm) && positive(e.apicalMm);
+                else
+                    return isValidUnn(e.tooth);
+            },
+            edit);
+        if (!ok) return false;
+    }
+    return true;
+}
+
 bool nrrd(const std::string& input) { return readsVolume(input, ".nrrd"); }
 bool nifti(const std::string& input) { return readsVolume(input, ".nii"); }
 
@@ -125,7 +157,8 @@ const std::vector<Target>& targets() {
     static const std::vector<Target> all = {{"stl_binary", stlBinary}, {"stl_ascii", stlAscii}, {"obj", obj},
                                             {"ply", ply},              {"off", off},            {"axes_json", axesJson},
                                             {"config_json", configJson}, {"nrrd", nrrd},
-                                            {"nifti", nifti},          {"labels_json", labelsJson}};
+                                            {"nifti", nifti},          {"labels_json", labelsJson},
+                                            {"edits_json", editsJson}};
     return all;
 }
 

@@ -22,6 +22,9 @@ bool off(const std::string& input);
 bool axesJson(const std::string& input);
 /// Run config JSON (cli/RunOptions.h): accepted options are within their ranges.
 bool configJson(const std::string& input);
+/// Edit files (io/Edits.h), from a temporary file: every edit read names valid UNNs and has
+/// positive, finite lengths.
+bool editsJson(const std::string& input);
 /// Label volumes (io/LabelVolume.h), from a temporary file (the libraries read files): a volume
 /// read has as many values as voxels, a finite non-degenerate map and a labelled voxel.
 bool nrrd(const std::string& input);

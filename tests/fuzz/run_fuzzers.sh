@@ -11,7 +11,7 @@ cd "$(dirname "$0")/../.."
 seconds="${1:-30}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(stl_binary stl_ascii obj ply off axes_json config_json nrrd nifti labels_json)
+[ ${#targets[@]} -eq 0 ] && targets=(stl_binary stl_ascii obj ply off axes_json config_json nrrd nifti labels_json edits_json)
 
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DJAWMESH_FUZZ=ON \
