@@ -211,6 +211,22 @@ std::string reportHtml(const Json& report, const std::vector<ReportPicture>& pic
     h << "<table id=\"checks\">\n" << row({"check", "status", "detail"}, true);
     for (const Json& c : verdict["checks"]) h << row({cell(c["name"]), cell(c["status"]), cell(c["detail"])});
     h << "</table>\n";
+    if (report.contains("edits")) {
+        // What-ifs (levelset/JawEdits.h): the distances to the input differ where they changed it.
+        h << "<h2>Edits</h2>\n<p>Applied in order before carving; where they changed the anatomy the distance to the "
+             "input differs by design.</p>\n<table>\n"
+          << row({"file", "op", "edit and what it measured (mm)"}, true);
+        for (const Json& record : report["edits"])
+            for (Json e : record["applied"]) {
+                const std::string op = e["op"].get<std::string>();
+                for (const char* key : {"op", "axis", "side_direction", "seconds"}) e.erase(key);
+                if (e.contains("teeth") && e["teeth"].is_array())
+                    for (Json& t : e["teeth"])
+                        if (t.is_object()) t.erase("axis");
+                h << row({escape(record["file"].get<std::string>()), escape(op), escape(e.dump())});
+            }
+        h << "</table>\n";
+    }
     if (!report.contains("regions")) return h.str() + "<p>The mesh is structurally broken; see report.json.</p></body></html>\n";
 
     h << "<h2>Mesh sizes</h2>\n" << sizesTable(report);
