@@ -72,8 +72,7 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
 
     StagedFolder staged(opt.output + "/" + jawName(jaw));
     const std::string jawDir = staged.path();
-    writeLabelField(field, jawDir + "/levelsets");
-    writeJawLevelSets(levelSets, jaw, co, jawDir + "/levelsets/input");  // what `jawmesh edit` carves again
+    writeEditableFolder(field, levelSets, jaw, co, nlohmann::json::array(), jawDir + "/levelsets");  // `jawmesh edit` carves it again
     nlohmann::json j = toJson(summary);
     j["options"] = toJson(co);
     j["case"] = opt.caseDir;

@@ -35,9 +35,7 @@ void runEdit(const EditCliOptions& opt, const GlobalOptions& global) {
     const LabelField field = carveJaw(stored.jaw, *stored.levelSets.bone, stored.levelSets.teeth, stored.carve, summary, progress);
 
     StagedFolder staged(opt.output);
-    writeLabelField(field, staged.path());
-    writeJawLevelSets(stored.levelSets, stored.jaw, stored.carve, staged.path() + "/input");
-    writeEditHistory(history, staged.path());
+    writeEditableFolder(field, stored.levelSets, stored.jaw, stored.carve, history, staged.path());
     nlohmann::json j = toJson(summary);
     j["options"] = toJson(stored.carve);
     j["edits"] = history;

@@ -127,9 +127,8 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         requireBoneContact(summary, jawCase, carve);
         if (options.writeLevelSets)
             log.run(jaw + ": write level sets", progress, [&] {
-                writeLabelField(field, outJawDir + "/levelsets");
-                writeJawLevelSets(levelSets, jawCase.jaw, carve, outJawDir + "/levelsets/input");
-                if (record.contains("edits")) writeEditHistory(record["edits"], outJawDir + "/levelsets");
+                writeEditableFolder(field, levelSets, jawCase.jaw, carve, record.value("edits", nlohmann::json::array()),
+                                    outJawDir + "/levelsets");
             });
     }
     const std::vector<int> teeth = teethInField(field);

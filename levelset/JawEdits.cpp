@@ -1,13 +1,10 @@
 // Implements levelset/JawEdits.h; what it computes, its rules and its contract are documented there.
 #include "levelset/JawEdits.h"
 
-#include "io/AtomicFile.h"
-#include "io/Error.h"
 #include "levelset/HealSocket.h"
 #include "levelset/LowerCrest.h"
 
 #include <chrono>
-#include <fstream>
 #include <type_traits>
 
 namespace jawmesh {
@@ -125,23 +122,6 @@ nlohmann::json apply(EditContext& ctx, const PdlThicknessEdit& e) {
 }
 
 }  // namespace
-
-nlohmann::json readEditHistory(const std::string& dir) {
-    const std::string path = dir + "/" + kEditHistoryFile;
-    std::ifstream in(path);
-    if (!in) return nlohmann::json::array();
-    try {
-        nlohmann::json history = nlohmann::json::parse(in);
-        if (history.is_array()) return history;
-    } catch (const nlohmann::json::exception& e) {
-        throw Error(path, std::string("not valid JSON: ") + e.what());
-    }
-    throw Error(path, "an edit history is a JSON array of edit records");
-}
-
-void writeEditHistory(const nlohmann::json& history, const std::string& dir) {
-    writeFileAtomically(dir + "/" + kEditHistoryFile, [&](std::ostream& o) { o << history.dump(2) << '\n'; }, false);
-}
 
 nlohmann::json applyEdits(const EditList& edits, JawLevelSets& levelSets, CarveOptions& carve, Progress& progress) {
     std::vector<int> present;

@@ -14,20 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <string>
-
 namespace jawmesh {
-
-/// The record of every edit file applied to a level-set folder, oldest first (a JSON array of
-/// applyEdits' records), kept in the folder under this name; run.json's "edits" is the same array.
-inline constexpr const char* kEditHistoryFile = "edits.json";
-
-/// The edit history of a level-set folder (an empty array when it has none). Throws Error naming
-/// the file when it is not a JSON array.
-nlohmann::json readEditHistory(const std::string& dir);
-
-/// Writes the history into dir (atomically).
-void writeEditHistory(const nlohmann::json& history, const std::string& dir);
 
 /// Applies `edits` to `levelSets` (the bone grid and the teeth are replaced, not modified in place)
 /// and to `carve` (axes from carve.axes where the case has them, else from the tooth's shape,

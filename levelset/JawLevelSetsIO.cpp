@@ -5,6 +5,7 @@
 #include "io/Error.h"
 #include "io/ToothAxes.h"
 #include "levelset/Csg.h"
+#include "levelset/LabelFieldIO.h"
 #include "levelset/VdbFile.h"
 
 #include <filesystem>
@@ -33,6 +34,30 @@ void writeJawLevelSets(const JawLevelSets& levelSets, Jaw jaw, const CarveOption
     const nlohmann::json j = {{"jaw", jawName(jaw)}, {"options", toJson(carve)}};
     writeFileAtomically(dir + "/carve.json", [&](std::ostream& out) { out << j.dump(2) << '\n'; }, false);
     if (!carve.axes.empty()) writeToothAxes(carve.axes, dir + "/teeth_axes.json");
+}
+
+nlohmann::json readEditHistory(const std::string& dir) {
+    const std::string path = dir + "/" + kEditHistoryFile;
+    std::ifstream in(path);
+    if (!in) return nlohmann::json::array();
+    try {
+        nlohmann::json history = nlohmann::json::parse(in);
+        if (history.is_array()) return history;
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(path, std::string("not valid JSON: ") + e.what());
+    }
+    throw Error(path, "an edit history is a JSON array of edit records");
+}
+
+void writeEditHistory(const nlohmann::json& history, const std::string& dir) {
+    writeFileAtomically(dir + "/" + kEditHistoryFile, [&](std::ostream& o) { o << history.dump(2) << '\n'; }, false);
+}
+
+void writeEditableFolder(const LabelField& field, const JawLevelSets& levelSets, Jaw jaw, const CarveOptions& carve,
+                         const nlohmann::json& history, const std::string& dir) {
+    writeLabelField(field, dir);
+    writeJawLevelSets(levelSets, jaw, carve, dir + "/input");
+    if (!history.empty()) writeEditHistory(history, dir);
 }
 
 StoredJawLevelSets readJawLevelSets(const std::string& dir) {

@@ -40,9 +40,7 @@ int main(int argc, char** argv) {
         const LabelField field = carveJaw(jaw.jaw, *jaw.levelSets.bone, jaw.levelSets.teeth, jaw.carve, summary);
         // Everything goes to a staging folder renamed at the end: no half-written result.
         StagedFolder staged(out);
-        writeLabelField(field, staged.path());
-        writeJawLevelSets(jaw.levelSets, jaw.jaw, jaw.carve, staged.path() + "/input");
-        writeEditHistory(history, staged.path());
+        writeEditableFolder(field, jaw.levelSets, jaw.jaw, jaw.carve, history, staged.path());
         staged.commit(StagedFolder::Mode::Replace);
         std::cout << "extracted tooth " << argv[2] << " (socket " << entry["socket"].get<std::string>() << "); grids in " << out << "\n";
     } catch (const std::exception& e) {
