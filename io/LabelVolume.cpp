@@ -3,6 +3,7 @@
 #include "io/LabelVolume.h"
 
 #include "io/Error.h"
+#include "io/FileNames.h"
 #include "io/LabelVolumeFormats.h"
 
 #include <Eigen/LU>
@@ -16,13 +17,8 @@
 namespace jawmesh {
 namespace {
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
-                                                   [](char a, char b) { return std::tolower(a) == std::tolower(b); });
-}
-
-bool isNifti(const std::string& path) { return endsWith(path, ".nii") || endsWith(path, ".nii.gz"); }
-bool isNrrd(const std::string& path) { return endsWith(path, ".nrrd") || endsWith(path, ".nhdr"); }
+bool isNifti(const std::string& path) { return endsWithIgnoringCase(path, ".nii") || endsWithIgnoringCase(path, ".nii.gz"); }
+bool isNrrd(const std::string& path) { return endsWithIgnoringCase(path, ".nrrd") || endsWithIgnoringCase(path, ".nhdr"); }
 
 template <typename T>
 void appendAs(const void* data, std::size_t count, std::vector<std::int32_t>& out) {
@@ -139,7 +135,7 @@ void writeLabelVolume(const LabelVolume& volume, const std::string& path, bool s
     if (volume.values.size() != volume.voxels() * static_cast<std::size_t>(volume.layers))
         throw Error(path, "the volume's values do not match its size");
     if (slicer && !isNrrd(path)) throw Error(path, "a Slicer segmentation is written as .seg.nrrd");
-    if (endsWith(path, ".nhdr")) throw Error(path, "a detached header is read, not written: write .nrrd");
+    if (endsWithIgnoringCase(path, ".nhdr")) throw Error(path, "a detached header is read, not written: write .nrrd");
     std::map<std::string, std::string> keys;
     if (slicer)
         for (std::size_t n = 0; n < volume.segments.size(); ++n) {

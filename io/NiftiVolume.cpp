@@ -14,7 +14,7 @@ namespace {
 
 using NiftiPtr = std::unique_ptr<nifti_image, void (*)(nifti_image*)>;
 
-VoxelType voxelTypeOf(int datatype) {
+VoxelType niftiVoxelType(int datatype) {
     switch (datatype) {
         case DT_INT8: return VoxelType::Int8;
         case DT_UINT8: return VoxelType::UInt8;
@@ -67,7 +67,7 @@ LabelVolume readNiftiVolume(const std::string& path) {
     if (nim->scl_slope != 0 && (nim->scl_slope != 1 || nim->scl_inter != 0))
         throw Error(path, "values are scaled (scl_slope/scl_inter): labels must be stored as they are");
     readGeometry(*nim, v);
-    if (!convertValues(nim->data, voxelTypeOf(nim->datatype), v.voxels(), v.values))
+    if (!convertValues(nim->data, niftiVoxelType(nim->datatype), v.voxels(), v.values))
         throw Error(path, std::string("values of type ") + nifti_datatype_string(nim->datatype) +
                               ": labels must be integers of 8-32 bits");
     return v;

@@ -22,7 +22,7 @@ std::string teemError() {
     return message;
 }
 
-VoxelType voxelTypeOf(int nrrdType) {
+VoxelType nrrdVoxelType(int nrrdType) {
     switch (nrrdType) {
         case nrrdTypeChar: return VoxelType::Int8;
         case nrrdTypeUChar: return VoxelType::UInt8;
@@ -114,7 +114,7 @@ LabelVolume readNrrdVolume(const std::string& path, std::map<std::string, std::s
     requireMillimetres(*nrrd, path);
     readGeometry(*nrrd, first, v);
     const std::size_t count = v.voxels() * static_cast<std::size_t>(v.layers);
-    if (!convertValues(nrrd->data, voxelTypeOf(nrrd->type), count, v.values))
+    if (!convertValues(nrrd->data, nrrdVoxelType(nrrd->type), count, v.values))
         throw Error(path, std::string("values of type ") + airEnumStr(nrrdType, nrrd->type) +
                               ": labels must be integers of 8-32 bits");
     if (v.layers > 1) {

@@ -3,6 +3,7 @@
 
 #include "io/AtomicFile.h"
 #include "io/Error.h"
+#include "io/FileNames.h"
 #include "io/MeshIO.h"
 
 #include <algorithm>
@@ -14,13 +15,6 @@ namespace jawmesh {
 
 namespace {
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-    if (s.size() < suffix.size()) return false;
-    std::string tail = s.substr(s.size() - suffix.size());
-    std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
-    return tail == suffix;
-}
-
 void writeNumber(std::ostream& os, double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -30,8 +24,8 @@ void writeNumber(std::ostream& os, double v) {
 }  // namespace
 
 void writeTetgenPoly(const InterfaceComplex& complex, const std::string& path) {
-    const bool smesh = endsWith(path, ".smesh");
-    if (!smesh && !endsWith(path, ".poly")) throw Error(path, "expected a .poly or .smesh file name");
+    const bool smesh = endsWithIgnoringCase(path, ".smesh");
+    if (!smesh && !endsWithIgnoringCase(path, ".poly")) throw Error(path, "expected a .poly or .smesh file name");
     const auto& S = complex.surface;
     if (complex.sides.size() != S.triangles.size())
         throw Error(path, "interface complex has " + std::to_string(complex.sides.size()) +

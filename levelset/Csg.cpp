@@ -118,8 +118,10 @@ openvdb::FloatGrid::Ptr rebuildAt(const openvdb::FloatGrid& grid, double isoMm, 
     Interrupter interrupter(progress);
     openvdb::FloatGrid::Ptr out;
     try {
+        // Through the base class: OpenVDB's library holds this instantiation (its interrupter is
+        // virtual), so the compiler does not build a mesher of its own here (80 s of the build).
         out = openvdb::tools::levelSetRebuild(grid, float(isoMm), float(exVoxels), float(inVoxels), nullptr,
-                                              &interrupter);
+                                              static_cast<openvdb::util::NullInterrupter*>(&interrupter));
     } catch (const openvdb::Exception& e) {
         throw Error("level set '" + grid.getName() + "': rebuild failed: " + e.what());
     }

@@ -4,6 +4,7 @@
 
 #include "io/Error.h"
 #include "tet/TetFaceAdjacency.h"
+#include "tet/TetStageName.h"
 
 #include <algorithm>
 #include <map>
@@ -11,7 +12,6 @@
 namespace jawmesh {
 namespace {
 
-constexpr const char* kWhat = "tetrahedralize";
 
 using TriangleIndex = std::map<std::array<std::int32_t, 3>, std::size_t>;  // sorted node triple -> input triangle
 
@@ -67,7 +67,7 @@ std::vector<Label> componentLabels(const InterfaceComplex& plc, const TetMesh& m
         if (c == side) continue;
         const auto& v = plc.surface.vertices;
         const Vec3 p = (v[std::size_t(tri[0])] + v[std::size_t(tri[1])] + v[std::size_t(tri[2])]) / 3.0;
-        throw Error(kWhat, "the tets next to interface triangle " + std::to_string(it->second) + " near (" + tetgenNumber(p.x()) +
+        throw Error(kTetStageName, "the tets next to interface triangle " + std::to_string(it->second) + " near (" + tetgenNumber(p.x()) +
                                ", " + tetgenNumber(p.y()) + ", " + tetgenNumber(p.z()) +
                                ") belong to a component that other triangles give " + labelName(c) + ", but this one gives " +
                                labelName(side) + ": a region boundary is open (TetGen lost a facet?)");
@@ -85,7 +85,7 @@ void labelFromSides(const InterfaceComplex& plc, TetgenMesh& raw) {
     const std::vector<Label> component = componentLabels(plc, m, adj, triangleOf, root);
     for (std::size_t t = 0; t < m.tets.size(); ++t) {
         const Label c = component[std::size_t(root[t])];
-        if (c == kUnset) throw Error(kWhat, "a group of tets touches no interface triangle (TetGen kept a hull region)");
+        if (c == kUnset) throw Error(kTetStageName, "a group of tets touches no interface triangle (TetGen kept a hull region)");
         m.labels[t] = c;
     }
 }

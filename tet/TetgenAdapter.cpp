@@ -1,6 +1,7 @@
 // tetgenio in and out (filled with new[]: tetgenio frees with delete[]), TetGen's error codes as
 // reasons, and the mesh's way through runForked's pipe.
 #include "tet/TetgenAdapter.h"
+#include "tet/TetStageName.h"
 
 #include "filters/SelfIntersections.h"
 #include "io/ChildProcess.h"
@@ -16,7 +17,6 @@
 namespace jawmesh {
 namespace {
 
-constexpr const char* kWhat = "tetrahedralize";
 
 std::string tetgenReason(int code) {
     switch (code) {
@@ -59,7 +59,7 @@ void fillFacets(const InterfaceComplex& plc, tetgenio& in) {
 
 void fillRegions(const InterfaceComplex& plc, const std::vector<double>& volumeBounds, tetgenio& in) {
     if (volumeBounds.size() != plc.seeds.size())
-        throw Error(kWhat, "internal error: " + std::to_string(volumeBounds.size()) + " volume bounds for " +
+        throw Error(kTetStageName, "internal error: " + std::to_string(volumeBounds.size()) + " volume bounds for " +
                                std::to_string(plc.seeds.size()) + " seeds");
     in.numberofregions = static_cast<int>(plc.seeds.size());
     in.regionlist = new REAL[5 * plc.seeds.size()];
@@ -136,7 +136,7 @@ TetgenMesh receiveMesh(const std::vector<char>& bytes) {
         whole = takeFromChild(bytes, at, raw.mesh.nodes.data(), counts[0]) && takeFromChild(bytes, at, raw.mesh.tets.data(), counts[1]) &&
                 takeFromChild(bytes, at, raw.mesh.labels.data(), counts[1]) && takeFromChild(bytes, at, raw.facets.data(), counts[2]);
     }
-    if (!whole) throw Error(kWhat, "TetGen's child process sent a truncated mesh");
+    if (!whole) throw Error(kTetStageName, "TetGen's child process sent a truncated mesh");
     return raw;
 }
 
@@ -157,15 +157,15 @@ TetgenMesh runTetgen(const InterfaceComplex& plc, const TetgenRun& run) {
     tetgenbehavior b;
     std::vector<char> sw(run.switches.begin(), run.switches.end());
     sw.push_back('\0');
-    if (!b.parse_commandline(sw.data())) throw Error(kWhat, "TetGen rejected the switches '" + run.switches + "'");
+    if (!b.parse_commandline(sw.data())) throw Error(kTetStageName, "TetGen rejected the switches '" + run.switches + "'");
     b.optmaxdihedral = run.optMaxDihedralDeg;
     try {
         tetrahedralize(&b, &in, &out);
     } catch (int code) {
-        throw Error(kWhat, tetgenReason(code));
+        throw Error(kTetStageName, tetgenReason(code));
     }
-    if (out.numberoftetrahedra <= 0) throw Error(kWhat, "TetGen produced no tetrahedra (are the seeds inside the regions?)");
-    if (out.numberofcorners != 4) throw Error(kWhat, "TetGen produced elements with " + std::to_string(out.numberofcorners) + " nodes");
+    if (out.numberoftetrahedra <= 0) throw Error(kTetStageName, "TetGen produced no tetrahedra (are the seeds inside the regions?)");
+    if (out.numberofcorners != 4) throw Error(kTetStageName, "TetGen produced elements with " + std::to_string(out.numberofcorners) + " nodes");
     TetgenMesh raw;
     readNodes(out, raw.mesh);
     readTets(out, plc.seeds, raw.mesh);
@@ -179,14 +179,14 @@ TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, s
         // TetGen is serial: the child needs no thread pool.
         r = runForked([&](ParentPipe& pipe) { sendMesh(pipe, runTetgen(plc, run)); });
     } catch (const Error& e) {
-        throw Error(kWhat, "TetGen: " + e.reason());
+        throw Error(kTetStageName, "TetGen: " + e.reason());
     }
     childPeakBytes = std::max(childPeakBytes, r.exit.peakMemoryBytes);
     if (r.exit.signal != 0)
-        throw Error(kWhat, "TetGen died (signal " + std::to_string(r.exit.signal) + ", " + strsignal(r.exit.signal) +
+        throw Error(kTetStageName, "TetGen died (signal " + std::to_string(r.exit.signal) + ", " + strsignal(r.exit.signal) +
                                ") with switches '" + run.switches + "'");
     if (r.thrown) throw Error(*r.thrown);
-    if (!r.returned) throw Error(kWhat, "TetGen's child process failed with switches '" + run.switches + "'");
+    if (!r.returned) throw Error(kTetStageName, "TetGen's child process failed with switches '" + run.switches + "'");
     return receiveMesh(r.bytes);
 }
 

@@ -12,6 +12,7 @@
 #include "tet/RefineComplex.h"
 #include "tet/RepairHoles.h"
 #include "tet/TetgenAdapter.h"
+#include "tet/TetStageName.h"
 
 #include <algorithm>
 #include <chrono>
@@ -21,8 +22,6 @@
 
 namespace jawmesh {
 namespace {
-
-constexpr const char* kWhat = "tetrahedralize";
 
 std::string pointText(const Vec3& p) { return "(" + tetgenNumber(p.x()) + ", " + tetgenNumber(p.y()) + ", " + tetgenNumber(p.z()) + ")"; }
 
@@ -40,7 +39,7 @@ void rejectOpenRegions(const InterfaceComplex& plc, const HoleFillStats& repair)
     const auto first = std::find_if(open.begin(), open.end(), [](const OpenRegionEdge& e) { return e.label != kOutsideLabel; });
     const OpenRegionEdge& e = first != open.end() ? *first : open[0];
     const Vec3 p = 0.5 * (plc.surface.vertices[std::size_t(e.a)] + plc.surface.vertices[std::size_t(e.b)]);
-    throw Error(kWhat, "the interface surface has holes: " + std::to_string(edges) +
+    throw Error(kTetStageName, "the interface surface has holes: " + std::to_string(edges) +
                            " edges where a region's boundary stops (the first on the boundary of " + labelName(e.label) +
                            " near " + pointText(p) + "; " + std::to_string(repair.filled.size()) + " holes closed, " +
                            std::to_string(repair.left.size()) + " could not be); the regions would mesh into each other");
@@ -48,33 +47,33 @@ void rejectOpenRegions(const InterfaceComplex& plc, const HoleFillStats& repair)
 
 void checkComplex(const InterfaceComplex& plc) {
     const auto& s = plc.surface;
-    if (s.triangles.empty()) throw Error(kWhat, "the interface complex has no triangles");
+    if (s.triangles.empty()) throw Error(kTetStageName, "the interface complex has no triangles");
     if (plc.sides.size() != s.triangles.size())
-        throw Error(kWhat, "the interface complex has " + std::to_string(plc.sides.size()) + " side pairs for " +
+        throw Error(kTetStageName, "the interface complex has " + std::to_string(plc.sides.size()) + " side pairs for " +
                                std::to_string(s.triangles.size()) + " triangles");
     if (!plc.carried.empty())  // points on no facet, some exactly on one: TetGen may crash on them
-        throw Error(kWhat, "the interface complex still carries the adaptive extraction's vertices (simplify it, or withoutCarried)");
-    if (plc.seeds.empty()) throw Error(kWhat, "the interface complex has no region seeds");
+        throw Error(kTetStageName, "the interface complex still carries the adaptive extraction's vertices (simplify it, or withoutCarried)");
+    if (plc.seeds.empty()) throw Error(kTetStageName, "the interface complex has no region seeds");
     const auto nv = static_cast<std::int64_t>(s.vertices.size());
     for (std::size_t t = 0; t < s.triangles.size(); ++t) {
         for (auto v : s.triangles[t])
-            if (v < 0 || v >= nv) throw Error(kWhat, "triangle " + std::to_string(t) + " has a vertex index out of range");
+            if (v < 0 || v >= nv) throw Error(kTetStageName, "triangle " + std::to_string(t) + " has a vertex index out of range");
         if (plc.sides[t][0] == plc.sides[t][1])
-            throw Error(kWhat, "triangle " + std::to_string(t) + " separates label " + std::to_string(plc.sides[t][0]) +
+            throw Error(kTetStageName, "triangle " + std::to_string(t) + " separates label " + std::to_string(plc.sides[t][0]) +
                                    " from itself");
     }
     for (const auto& seed : plc.seeds) {
-        if (seed.label == kOutsideLabel) throw Error(kWhat, "a region seed has the outside label 0");
-        if (!seed.point.allFinite()) throw Error(kWhat, "a region seed is not finite");
+        if (seed.label == kOutsideLabel) throw Error(kTetStageName, "a region seed has the outside label 0");
+        if (!seed.point.allFinite()) throw Error(kTetStageName, "a region seed is not finite");
         labelKind(seed.label);  // throws for unknown labels
     }
 }
 
 void checkOptions(const TetOptions& o) {
-    if (!(o.radiusEdgeRatio > 1.0)) throw Error(kWhat, "the radius-edge bound must be > 1 (TetGen -q)");
+    if (!(o.radiusEdgeRatio > 1.0)) throw Error(kTetStageName, "the radius-edge bound must be > 1 (TetGen -q)");
     if (o.slivers.targetMinDihedralDeg < 0 || o.slivers.targetMinDihedralDeg >= 70)
-        throw Error(kWhat, "the minimum dihedral angle must be in [0, 70) degrees");
-    if (o.tetgenMinDihedralDeg >= 70) throw Error(kWhat, "TetGen's minimum dihedral angle must be below 70 degrees");
+        throw Error(kTetStageName, "the minimum dihedral angle must be in [0, 70) degrees");
+    if (o.tetgenMinDihedralDeg >= 70) throw Error(kTetStageName, "TetGen's minimum dihedral angle must be below 70 degrees");
 }
 
 /// TetGen 1.5.0 crashes (double free while unwinding from terminatetetgen) instead of throwing
@@ -87,7 +86,7 @@ void rejectSelfIntersections(const InterfaceComplex& plc) {
     const std::int32_t first = report.pairs.empty() ? report.degenerate.front() : report.pairs.front().first;
     Vec3 c = Vec3::Zero();
     for (std::int32_t v : plc.surface.triangles[std::size_t(first)]) c += plc.surface.vertices[std::size_t(v)] / 3.0;
-    throw Error(kWhat, "the interface surface intersects itself (" + std::to_string(report.pairs.size()) +
+    throw Error(kTetStageName, "the interface surface intersects itself (" + std::to_string(report.pairs.size()) +
                            " intersecting triangle pairs, " + std::to_string(report.degenerate.size()) +
                            " degenerate triangles; the first near " + pointText(c) + ")");
 }
@@ -188,7 +187,7 @@ bool attempt(Ladder& l, const InterfaceComplex& complex, std::size_t r, bool onl
     TetgenMesh raw = isolated ? runTetgenInChild(complex, run, l.stats.childPeakMemoryBytes) : runTetgen(complex, run);
     if (o.preserveBoundary) labelFromSides(complex, raw);
     const std::size_t removed = keepLabeled(raw.mesh);
-    if (raw.mesh.tets.empty()) throw Error(kWhat, "no tetrahedron received a label: are the seeds inside their regions?");
+    if (raw.mesh.tets.empty()) throw Error(kTetStageName, "no tetrahedron received a label: are the seeds inside their regions?");
     SliverStats slivers;
     if (o.improveSlivers) improveSlivers(raw.mesh, o.slivers, &slivers, l.progress);
     const QualityStats q = measureQuality(raw.mesh, o.slivers.targetMinDihedralDeg);
@@ -249,7 +248,7 @@ void refineRounds(Ladder& l, const InterfaceComplex& plc, std::size_t runs, Prog
 double tetVolumeForEdge(double edgeMm) { return edgeMm * edgeMm * edgeMm / (6.0 * std::sqrt(2.0)); }
 
 TetMesh tetrahedralize(const InterfaceComplex& input, const TetOptions& options, Progress& progress, TetStats* stats) {
-    ProgressStage stage(progress, "tetrahedralize");
+    ProgressStage stage(progress, kTetStageName);
     checkComplex(input);
     TetStats st;
     InterfaceComplex repaired;

@@ -6,6 +6,7 @@
 #include "batch/Manifest.h"
 #include "io/ChildProcess.h"
 #include "support/TestData.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -71,13 +72,6 @@ nlohmann::json untimedReport(const fs::path& jawDir) {
     return report;
 }
 
-void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 /// The pid in the name of the first in-flight folder (".<jaw>.partial-<host>-<pid>") to appear
 /// under caseOut within a minute, or 0.
 int waitForPartialFolder(const fs::path& caseOut) {
@@ -121,7 +115,7 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
 
     // First run: 6 ok, the broken case failed with the reader's message naming the file.
     const BatchRun first = batch(dataset, out, dir / "first.log");
-    EXPECT_NE(first.exitCode, 0) << readText(dir / "first.log");
+    EXPECT_NE(first.exitCode, 0) << test::readText(dir / "first.log");
     ASSERT_EQ(first.manifest.tasks.size(), 7u);
     for (int k = 0; k < 6; ++k) {
         const TaskRecord& r = first.manifest.tasks[static_cast<std::size_t>(k)];
@@ -136,7 +130,7 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
     // Tasks run in a temporary folder that is renamed when complete: no output may name it.
     for (const auto& e : fs::recursive_directory_iterator(out / "Patient_1" / "mandible")) {
         if (e.is_regular_file()) {
-            EXPECT_EQ(readText(e.path()).find(".partial-"), std::string::npos) << e.path() << " names the temporary folder";
+            EXPECT_EQ(test::readText(e.path()).find(".partial-"), std::string::npos) << e.path() << " names the temporary folder";
         }
     }
     const TaskRecord& broken = first.manifest.tasks[6];
@@ -144,10 +138,10 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
     EXPECT_EQ(broken.status, TaskStatus::Failed);
     EXPECT_NE(broken.error.find("Patient_7/input/mandible/bone/mandible.stl"), std::string::npos) << broken.error;
     EXPECT_FALSE(fs::exists(out / "Patient_7" / "mandible")) << "a failed case leaves no output folder";
-    EXPECT_NE(readText(out / broken.log).find("mandible.stl"), std::string::npos) << "its log has the error";
-    const std::string csv = readText(out / "summary.csv");
+    EXPECT_NE(test::readText(out / broken.log).find("mandible.stl"), std::string::npos) << "its log has the error";
+    const std::string csv = test::readText(out / "summary.csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 8) << csv;
-    EXPECT_NE(readText(dir / "first.log").find("6 ok (0 reused), 1 failed, 0 pending"), std::string::npos);
+    EXPECT_NE(test::readText(dir / "first.log").find("6 ok (0 reused), 1 failed, 0 pending"), std::string::npos);
     EXPECT_FALSE(hasPartialFolders(out));
 
     // Immediate rerun: the 6 are validated and reused in seconds; the broken one is retried.
@@ -170,7 +164,7 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
     const int coordinator = startChild({kJawmesh, "batch", dataset.string(), "-o", out.string(), "--config", kConfig},
                                        (dir / "killed.log").string());
     const int task = waitForPartialFolder(out / "Patient_3");
-    ASSERT_GT(task, 0) << readText(dir / "killed.log");
+    ASSERT_GT(task, 0) << test::readText(dir / "killed.log");
     ::kill(coordinator, SIGKILL);
     while (!reapFinishedChild()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     EXPECT_TRUE(waitUntilGone(task)) << "the task process outlived its batch";
@@ -195,7 +189,7 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
     ASSERT_EQ(exitCode(kJawmesh + " --quiet batch " + dataset.string() + " -o " + out.string() + " --config " + kConfig +
                        " --slurm --mem 2G > /dev/null"),
               0);
-    const std::string script = readText(out / "slurm" / "batch.sbatch");
+    const std::string script = test::readText(out / "slurm" / "batch.sbatch");
     EXPECT_NE(script.find("#SBATCH --array=6\n"), std::string::npos) << script;
     EXPECT_NE(script.find("#SBATCH --mem=2G\n"), std::string::npos) << script;
 
@@ -207,7 +201,7 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
     std::ifstream fastConfig(kConfig);
     nlohmann::json badTet = nlohmann::json::parse(fastConfig);
     badTet["tet_radius_edge"] = 0.5;
-    writeText(dir / "bad_tet.json", badTet.dump());
+    test::writeText(dir / "bad_tet.json", badTet.dump());
     EXPECT_NE(exitCode(kJawmesh + " --quiet batch " + one.string() + " -o " + oneOut.string() + " --config " +
                        (dir / "bad_tet.json").string()),
               0);
@@ -222,13 +216,13 @@ TEST(BatchCommand, CompletesReportsResumesAndRedoesOnlyDamagedCases) {
     EXPECT_NE(exitCode(kJawmesh + " --quiet batch " + (dir / "missing").string() + " -o " + (dir / "out2").string() +
                        " 2> " + (dir / "err.txt").string()),
               0);
-    EXPECT_NE(readText(dir / "err.txt").find("does not exist"), std::string::npos) << readText(dir / "err.txt");
+    EXPECT_NE(test::readText(dir / "err.txt").find("does not exist"), std::string::npos) << test::readText(dir / "err.txt");
     EXPECT_FALSE(fs::exists(dir / "out2"));
-    writeText(dir / "typo.json", "{\"voxel_mn\": 0.2}");
+    test::writeText(dir / "typo.json", "{\"voxel_mn\": 0.2}");
     EXPECT_NE(exitCode(kJawmesh + " --quiet batch " + dataset.string() + " -o " + (dir / "out3").string() +
                        " --config " + (dir / "typo.json").string() + " 2> " + (dir / "err.txt").string()),
               0);
-    EXPECT_NE(readText(dir / "err.txt").find("unknown config key 'voxel_mn'"), std::string::npos) << readText(dir / "err.txt");
+    EXPECT_NE(test::readText(dir / "err.txt").find("unknown config key 'voxel_mn'"), std::string::npos) << test::readText(dir / "err.txt");
     EXPECT_FALSE(fs::exists(dir / "out3"));
 }
 

@@ -14,6 +14,7 @@
 #include "io/ChildProcess.h"
 #include "io/Error.h"
 #include "support/TestData.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 
@@ -26,16 +27,6 @@
 namespace jawmesh {
 namespace {
 namespace fs = std::filesystem;
-
-void writeText(const fs::path& path, const std::string& text) {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 ChildExit waitForChild(int pid) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
@@ -60,15 +51,15 @@ TEST(BatchChecksum, DetectsAnyChangeAndStreamsFilesInBlocks) {
     EXPECT_NE(checksumHex(""), checksumHex(std::string(1, '\0')));
     EXPECT_EQ(checksumHex(a).size(), 16u);
     const auto dir = test::scratchDir("batch-checksum");
-    writeText(dir / "a.bin", a);
+    test::writeText(dir / "a.bin", a);
     EXPECT_EQ(fileChecksumHex((dir / "a.bin").string()), checksumHex(a));
     EXPECT_THROW(fileChecksumHex((dir / "missing.bin").string()), Error);
 }
 
 TEST(BatchOutputStamp, ValidOnlyForTheSameOptionsAndUnchangedFiles) {
     const auto dir = test::scratchDir("batch-stamp");
-    writeText(dir / "run.json", "{}\n");
-    writeText(dir / "volumetric_meshes" / "mandible.msh", "mesh contents");
+    test::writeText(dir / "run.json", "{}\n");
+    test::writeText(dir / "volumetric_meshes" / "mandible.msh", "mesh contents");
     OutputStamp stamp;
     stamp.optionsHash = "h1";
     stamp.seconds = 12.5;
@@ -89,13 +80,13 @@ TEST(BatchOutputStamp, ValidOnlyForTheSameOptionsAndUnchangedFiles) {
     EXPECT_NE(outputProblem(dir.string(), "h1", {"volumetric_meshes/mandible.vtu"}).find("does not list"),
               std::string::npos);
 
-    writeText(dir / "volumetric_meshes" / "mandible.msh", "mesh Contents");  // same size, other bytes
+    test::writeText(dir / "volumetric_meshes" / "mandible.msh", "mesh Contents");  // same size, other bytes
     EXPECT_NE(outputProblem(dir.string(), "h1", required).find("contents changed"), std::string::npos);
-    writeText(dir / "volumetric_meshes" / "mandible.msh", "mesh");  // truncated
+    test::writeText(dir / "volumetric_meshes" / "mandible.msh", "mesh");  // truncated
     EXPECT_NE(outputProblem(dir.string(), "h1", required).find("bytes"), std::string::npos);
     fs::remove(dir / "volumetric_meshes" / "mandible.msh");
     EXPECT_NE(outputProblem(dir.string(), "h1", required).find("missing"), std::string::npos);
-    writeText(dir / kOutputStampName, "{\"status\": ");
+    test::writeText(dir / kOutputStampName, "{\"status\": ");
     EXPECT_NE(outputProblem(dir.string(), "h1", required).find("unreadable stamp"), std::string::npos);
     fs::remove(dir / kOutputStampName);
     EXPECT_NE(outputProblem(dir.string(), "h1", required).find("no completion stamp"), std::string::npos);
@@ -104,14 +95,14 @@ TEST(BatchOutputStamp, ValidOnlyForTheSameOptionsAndUnchangedFiles) {
 TEST(BatchDataset, OneTaskPerCaseAndJawAndBrokenCasesAreTasksToo) {
     const auto ds = test::scratchDir("batch-dataset");
     for (const char* jaw : {"mandible", "maxilla"}) {
-        writeText(ds / "Patient_2" / "input" / jaw / "bone" / (std::string(jaw) + ".stl"), "");
-        writeText(ds / "Patient_2" / "input" / jaw / "teeth" / (std::string(jaw) == "mandible" ? "tooth_24.stl" : "tooth_8.stl"), "");
+        test::writeText(ds / "Patient_2" / "input" / jaw / "bone" / (std::string(jaw) + ".stl"), "");
+        test::writeText(ds / "Patient_2" / "input" / jaw / "teeth" / (std::string(jaw) == "mandible" ? "tooth_24.stl" : "tooth_8.stl"), "");
     }
-    writeText(ds / "Patient_1" / "input" / "mandible" / "bone" / "mandible.stl", "");
-    writeText(ds / "Patient_1" / "input" / "mandible" / "teeth" / "tooth_25.stl", "");
+    test::writeText(ds / "Patient_1" / "input" / "mandible" / "bone" / "mandible.stl", "");
+    test::writeText(ds / "Patient_1" / "input" / "mandible" / "teeth" / "tooth_25.stl", "");
     fs::create_directories(ds / "Patient_3" / "scans");   // no input/: reported, not skipped
     fs::create_directories(ds / ".cache");                 // hidden: ignored
-    writeText(ds / "README.txt", "not a case");            // files beside the cases: ignored
+    test::writeText(ds / "README.txt", "not a case");            // files beside the cases: ignored
 
     const std::vector<DatasetTask> tasks = discoverDataset(ds.string());
     ASSERT_EQ(tasks.size(), 4u);
@@ -164,7 +155,7 @@ TEST(BatchManifest, RoundTripsAndTaskResultsAreReadBack) {
     ASSERT_TRUE(result);
     EXPECT_EQ(toJson(*result), toJson(r));
 
-    writeText(manifestPath(out.string()), "[1, 2");
+    test::writeText(manifestPath(out.string()), "[1, 2");
     try {
         readManifest(out.string());
         FAIL() << "a torn manifest must be an error";
@@ -235,7 +226,7 @@ TEST(BatchChildProcess, ExitCodesCrashesPeakMemoryAndLogs) {
     EXPECT_EQ(e.signal, 0);
     EXPECT_GT(e.peakMemoryBytes, 0u);
     EXPECT_EQ(describeExit(e), "exit code 3");
-    const std::string text = readText(log);
+    const std::string text = test::readText(log);
     EXPECT_NE(text.find("to-stdout"), std::string::npos);
     EXPECT_NE(text.find("to-stderr"), std::string::npos);
 
@@ -261,18 +252,18 @@ TEST(BatchLayout, CommitReplacesTheOldOutputsAndStalePartialsGo) {
     const auto out = test::scratchDir("batch-layout");
     const DatasetTask task{"Patient_1", "/x/Patient_1", "mandible", ""};
     const fs::path finalDir = taskOutputDir(out.string(), task);
-    writeText(finalDir / "old.txt", "old");
+    test::writeText(finalDir / "old.txt", "old");
     const std::string partial = taskPartialDir(out.string(), task);
     EXPECT_EQ(fs::path(partial).parent_path(), finalDir.parent_path());
-    writeText(fs::path(partial) / "new.txt", "new");
+    test::writeText(fs::path(partial) / "new.txt", "new");
     commitTaskOutput(partial, finalDir.string());
     EXPECT_TRUE(fs::exists(finalDir / "new.txt"));
     EXPECT_FALSE(fs::exists(finalDir / "old.txt"));
     EXPECT_FALSE(fs::exists(partial));
 
-    writeText(fs::path(taskPartialDir(out.string(), task)) / "half.msh", "half");
+    test::writeText(fs::path(taskPartialDir(out.string(), task)) / "half.msh", "half");
     const DatasetTask other{"Patient_1", "/x/Patient_1", "maxilla", ""};
-    writeText(fs::path(taskPartialDir(out.string(), other)) / "half.msh", "half");
+    test::writeText(fs::path(taskPartialDir(out.string(), other)) / "half.msh", "half");
     removeStalePartials(out.string(), task);
     std::vector<std::string> left;
     for (const auto& e : fs::directory_iterator(out / "Patient_1")) left.push_back(e.path().filename().string());

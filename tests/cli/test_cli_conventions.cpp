@@ -4,6 +4,7 @@
 #include "cli/RunOptions.h"
 #include "support/TestData.h"
 #include "support_CliRun.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -20,11 +21,6 @@ namespace jawmesh::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 /// A one-tooth phantom case, made once for the tests of this file.
 const fs::path& phantomCase() {
@@ -115,7 +111,7 @@ TEST(CliConventions, BashCompletionCompletesCommandsAndOptions) {
         const std::string command = "bash -c 'source " + script.string() + "; COMP_WORDS=(" + array + "); COMP_CWORD=" +
                                     std::to_string(n - 1) + "; _jawmesh; echo \"${COMPREPLY[*]}\"' > " + out.string();
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
-        std::string reply = readFile(out);
+        std::string reply = test::readText(out);
         while (!reply.empty() && reply.back() == '\n') reply.pop_back();
         EXPECT_EQ(reply, expected) << typed;
     }
@@ -129,10 +125,10 @@ TEST(CliConventions, JsonAloneOnStdoutProgressOnStderr) {
     const std::string command = std::string(JAWMESH_BINARY) + " levelset " + bone.string() + " -o " + (dir / "bone.vdb").string() +
                                 " --voxel 0.3 --json > " + (dir / "out.txt").string() + " 2> " + (dir / "err.txt").string();
     ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    const std::string out = readFile(dir / "out.txt");
+    const std::string out = test::readText(dir / "out.txt");
     const nlohmann::json j = nlohmann::json::parse(out);  // throws when anything else is on stdout
     EXPECT_TRUE(j.is_object());
-    EXPECT_FALSE(readFile(dir / "err.txt").empty());
+    EXPECT_FALSE(test::readText(dir / "err.txt").empty());
 }
 
 }  // namespace

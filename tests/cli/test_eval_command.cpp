@@ -26,7 +26,7 @@ struct CommandResult {
     std::string err;
 };
 
-CommandResult runJawmesh(const std::string& args, const fs::path& dir) {
+CommandResult runWithStderr(const std::string& args, const fs::path& dir) {
     const fs::path errFile = dir / "stderr.txt";
     const int status = std::system((std::string(JAWMESH_BINARY) + " " + args + " 2> " + errFile.string() + " > /dev/null").c_str());
     return {WEXITSTATUS(status), readFileBytes(errFile.string())};
@@ -54,7 +54,7 @@ class EvalCommand : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = new fs::path(writeSyntheticCase("eval-command"));
-        const CommandResult r = runJawmesh("eval " + (*dir_ / "mandible.msh").string() + " --input " + (*dir_ / "case/input/mandible").string() +
+        const CommandResult r = runWithStderr("eval " + (*dir_ / "mandible.msh").string() + " --input " + (*dir_ / "case/input/mandible").string() +
                                   " -o " + (*dir_ / "report").string(),
                               *dir_);
         exitCode_ = r.exitCode;
@@ -143,18 +143,18 @@ TEST(EvalCommandErrors, BadInputNamesTheFileAndFails) {
     const fs::path dir = writeSyntheticCase("eval-command-errors");
     {
         std::ofstream(dir / "broken.msh") << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 5 1 5\n";
-        const CommandResult r = runJawmesh("eval " + (dir / "broken.msh").string() + " -o " + (dir / "out").string(), dir);
+        const CommandResult r = runWithStderr("eval " + (dir / "broken.msh").string() + " -o " + (dir / "out").string(), dir);
         EXPECT_EQ(r.exitCode, 1);
         EXPECT_NE(r.err.find("broken.msh"), std::string::npos) << r.err;
     }
     {
         std::ofstream(dir / "mesh.vtu") << "<VTKFile/>";
-        const CommandResult r = runJawmesh("eval " + (dir / "mesh.vtu").string() + " -o " + (dir / "out").string(), dir);
+        const CommandResult r = runWithStderr("eval " + (dir / "mesh.vtu").string() + " -o " + (dir / "out").string(), dir);
         EXPECT_EQ(r.exitCode, 1);
         EXPECT_NE(r.err.find("mesh.vtu"), std::string::npos) << r.err;
     }
     {
-        const CommandResult r = runJawmesh("eval " + (dir / "mandible.msh").string() + " --input " + dir.string() + " -o " + (dir / "out").string(), dir);
+        const CommandResult r = runWithStderr("eval " + (dir / "mandible.msh").string() + " --input " + dir.string() + " -o " + (dir / "out").string(), dir);
         EXPECT_EQ(r.exitCode, 1);
         EXPECT_NE(r.err.find("not an input folder"), std::string::npos) << r.err;
     }
@@ -166,7 +166,7 @@ TEST(EvalCommandErrors, BadInputNamesTheFileAndFails) {
         writeSurface(other.bone, (dir / "other/input/mandible/bone/mandible.stl").string());
         for (int unn : {24, 25})
             writeSurface(other.teeth.at(unn), (dir / ("other/input/mandible/teeth/tooth_" + std::to_string(unn) + ".stl")).string());
-        const CommandResult r = runJawmesh("eval " + (dir / "mandible.msh").string() + " --input " + (dir / "other").string() + " -o " +
+        const CommandResult r = runWithStderr("eval " + (dir / "mandible.msh").string() + " --input " + (dir / "other").string() + " -o " +
                                                (dir / "out").string(),
                                            dir);
         EXPECT_EQ(r.exitCode, 1);
@@ -174,7 +174,7 @@ TEST(EvalCommandErrors, BadInputNamesTheFileAndFails) {
     }
     EXPECT_FALSE(fs::exists(dir / "out/report.json"));
     // Without --input the report still has quality and PDL thickness, and no distances.
-    const CommandResult ok = runJawmesh("--quiet eval " + (dir / "mandible.msh").string() + " -o " + (dir / "bare").string(), dir);
+    const CommandResult ok = runWithStderr("--quiet eval " + (dir / "mandible.msh").string() + " -o " + (dir / "bare").string(), dir);
     ASSERT_EQ(ok.exitCode, 0) << ok.err;
     EXPECT_TRUE(ok.err.empty()) << ok.err;  // --quiet
     std::ifstream in(dir / "bare/report.json");

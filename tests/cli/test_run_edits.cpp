@@ -8,6 +8,7 @@
 #include "support_CliRun.h"
 #include "support_RunChecks.h"
 #include "tet/ElementQuality.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -81,11 +82,6 @@ TEST(RunEdits, WhatIfsReachTheMeshRunJsonAndReport) {
     EXPECT_EQ(run.at("options").at("edits")[2], (nlohmann::json{{"op", "extract"}, {"tooth", 25}, {"socket", "healed"}}));
 }
 
-std::string fileText(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(RunEdits, EditOnACarvedFolderGivesTheRunsMeshAndKeepsItsHistory) {
     const fs::path dir = test::scratchDir("edit-command");
     const auto ok = [&](const std::string& args, const std::string& log) {
@@ -112,7 +108,7 @@ TEST(RunEdits, EditOnACarvedFolderGivesTheRunsMeshAndKeepsItsHistory) {
     ok("-q run " + c + " --voxel 0.1 --edits " + (dir / "both.json").string() + " -o " + (dir / "direct").string(), "direct.log");
 
     const fs::path msh = fs::path("mandible") / "volumetric_meshes" / "mandible.msh";
-    EXPECT_EQ(fileText(dir / "fromvdb" / msh), fileText(dir / "direct" / msh)) << "edit + --from-vdb and run --edits differ";
+    EXPECT_EQ(test::readText(dir / "fromvdb" / msh), test::readText(dir / "direct" / msh)) << "edit + --from-vdb and run --edits differ";
     const nlohmann::json history = readJson(dir / "e2" / "edits.json");
     ASSERT_EQ(history.size(), 2u);
     EXPECT_EQ(history[1].at("applied")[0].at("op"), "pdl_thickness");

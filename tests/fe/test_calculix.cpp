@@ -10,6 +10,7 @@
 #include "fe/Scenario.h"
 #include "io/Error.h"
 #include "support/TestData.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 
@@ -23,13 +24,6 @@
 
 namespace jawmesh {
 namespace {
-
-std::string readText(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 struct Solved {
     nlohmann::json summary;
@@ -110,7 +104,7 @@ TEST(Calculix, DeckHasRegionSetsNeoHookeConstantsAndOutputRequests) {
     const FeScenario s = tippingScenario(mesh, test::gridJawBlockAxes());
     const auto dir = test::scratchDir("fe-ccx-deck");
     writeCalculixDeck(mesh, s, MaterialTable(), (dir / "t.inp").string());
-    const std::string deck = readText((dir / "t.inp").string());
+    const std::string deck = test::readText((dir / "t.inp").string());
     for (const char* needle : {"*ELEMENT, TYPE=C3D4, ELSET=tooth_24", "*ELEMENT, TYPE=C3D4, ELSET=pdl_25",
                                "*ELEMENT, TYPE=C3D4, ELSET=bone_mandible", "*NSET, NSET=fixed_base_mandible",
                                "*NSET, NSET=loadpt_tooth_24", "*HYPERELASTIC, NEO HOOKE", "*BOUNDARY", "*CLOAD",
@@ -157,7 +151,7 @@ TEST(Calculix, BitingDeckHasCrownSurfacesOnExteriorFacesAndAContactPair) {
     const FeScenario s = bitingScenario(mesh);
     const auto dir = test::scratchDir("fe-ccx-biting-deck");
     writeCalculixDeck(mesh, s, MaterialTable(), (dir / "biting.inp").string());
-    const std::string deck = readText((dir / "biting.inp").string());
+    const std::string deck = test::readText((dir / "biting.inp").string());
     for (const char* needle : {"*SURFACE, NAME=crowns_mandible, TYPE=ELEMENT", "*SURFACE, NAME=crowns_maxilla, TYPE=ELEMENT",
                                "*SURFACE INTERACTION, NAME=occlusal_contact", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
                                "*CONTACT PAIR, INTERACTION=occlusal_contact, TYPE=SURFACE TO SURFACE\ncrowns_mandible, crowns_maxilla",
@@ -213,7 +207,7 @@ TEST(Calculix, SolvesTheBitingDeckWithContactOnTwoCrowns) {
     const CalculixRun run = runCalculix(inp);
     const nlohmann::json summary = calculixSummary(s, run, inp);
     std::cout << summary.dump(2) << "\n";
-    EXPECT_EQ(readText(run.logPath).find("*ERROR"), std::string::npos) << readText(run.logPath);
+    EXPECT_EQ(test::readText(run.logPath).find("*ERROR"), std::string::npos) << test::readText(run.logPath);
     ASSERT_EQ(run.status, "completed") << run.message;
     const auto frd = readCalculixFrdDisplacements((dir / "biting.frd").string());
     // The crowns touch from the start: the lower crown's top rises only by what the maxilla and the

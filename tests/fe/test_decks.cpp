@@ -11,6 +11,7 @@
 #include "io/GmshReader.h"
 #include "support/TestData.h"
 #include "tet/GridTetMesh.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -26,20 +27,13 @@ namespace {
 
 using test::XmlNode;
 
-std::string readText(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 std::size_t countCommaList(const std::string& text) {
     return text.empty() ? 0 : static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1;
 }
 
 /// Checks an FEBio 4 file against the mesh it was written from.
 void expectValidFebio(const std::string& path, const TetMesh& mesh, const FeScenario& s, int order) {
-    const auto root = test::parseXml(readText(path));
+    const auto root = test::parseXml(test::readText(path));
     ASSERT_EQ(root->name, "febio_spec");
     EXPECT_EQ(root->attributes.at("version"), "4.0");
     const auto& meshNode = root->one("Mesh");
@@ -119,7 +113,7 @@ TEST(FebioWriter, BitingDeckHasTheContactPairAndPartialConstraints) {
     const auto dir = test::scratchDir("fe-febio-biting");
     writeFebioDeck(mesh, s, MaterialTable(), (dir / "biting.feb").string());
     expectValidFebio((dir / "biting.feb").string(), mesh, s, 1);
-    const auto root = test::parseXml(readText((dir / "biting.feb").string()));
+    const auto root = test::parseXml(test::readText((dir / "biting.feb").string()));
     const auto& pair = root->one("Mesh").one("SurfacePair");
     std::set<std::string> surfaces;
     for (const XmlNode* n : root->one("Mesh").all("Surface")) surfaces.insert(n->attributes.at("name"));
@@ -136,7 +130,7 @@ TEST(PolyfemWriter, JsonParsesAndEveryReferencedFileAndSelectionExists) {
     const std::string jsonPath = (dir / "tipping_polyfem.json").string();
     const auto written = writePolyfemDeck(mesh, s, MaterialTable(), jsonPath);
     EXPECT_EQ(written.back(), jsonPath);
-    const auto json = nlohmann::json::parse(readText(jsonPath));
+    const auto json = nlohmann::json::parse(test::readText(jsonPath));
     const auto& geometry = json.at("geometry").at(0);
     for (const char* key : {"mesh", "volume_selection", "surface_selection"})
         ASSERT_TRUE(std::filesystem::exists(dir / geometry.at(key).get<std::string>())) << key;

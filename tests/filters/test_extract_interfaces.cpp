@@ -8,6 +8,7 @@
 #include "io/PolyWriter.h"
 #include "support/TiledSlabField.h"
 #include "support_SyntheticLabels.h"
+#include "support_FineExtraction.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -65,17 +66,10 @@ void expectValidComplex(const InterfaceComplex& c, const LabelField& field) {
     EXPECT_EQ(seeded, regionLabels(c));
 }
 
-/// The fine extraction: one vertex per dual cell, no merged blocks.
-ExtractOptions fineExtraction() {
-    ExtractOptions e;
-    e.adaptive.maxLevel = 0;
-    return e;
-}
-
 TEST(ExtractInterfaces, JawPhantomIsClosedManifoldAccurate) {
     const double h = 0.05;
     const auto syn = test::jawPhantom(h);
-    const InterfaceComplex c = extractInterfaces(syn.field, fineExtraction());
+    const InterfaceComplex c = extractInterfaces(syn.field, test::fineExtraction());
     expectValidComplex(c, syn.field);
 
     // one seed per connected component: every region of the phantom is connected
@@ -138,7 +132,7 @@ TEST(ExtractInterfaces, AdaptiveIsTheFineSurfaceWithinItsBoundsWithFewerTriangle
     options.adaptive.boneNearTeethMm = 0.2;  // the phantom's bone is all near its teeth otherwise
     ExtractStats stats;
     const InterfaceComplex adaptive = extractInterfaces(syn.field, options, noProgress(), &stats);
-    const InterfaceComplex fine = extractInterfaces(syn.field, fineExtraction());
+    const InterfaceComplex fine = extractInterfaces(syn.field, test::fineExtraction());
     const InterfaceComplex corners = withoutCarried(adaptive);
     std::printf("phantom: %zu fine triangles, %zu adaptive (%zu blocks of %zu cells; carried %.4f, samples %.4f mm)\n",
                 fine.surface.triangles.size(), adaptive.surface.triangles.size(), stats.adaptive.blocks,

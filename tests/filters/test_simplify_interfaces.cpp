@@ -11,6 +11,7 @@
 #include "io/Error.h"
 #include "io/PolyWriter.h"
 #include "support_SyntheticLabels.h"
+#include "support_FineExtraction.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -36,17 +37,10 @@ SimplifyOptions phantomOptions() {
     return o;
 }
 
-/// The fine extraction (no merged blocks): the reference every bound is measured against.
-ExtractOptions fineExtraction() {
-    ExtractOptions e;
-    e.adaptive.maxLevel = 0;
-    return e;
-}
-
 const Simplified& phantom() {
     static const Simplified s = [] {
         Simplified r;
-        r.fine = extractInterfaces(test::jawPhantom(0.05).field, fineExtraction());
+        r.fine = extractInterfaces(test::jawPhantom(0.05).field, test::fineExtraction());
         r.coarse = simplifyInterfaces(r.fine, phantomOptions(), noProgress(), &r.stats);
         return r;
     }();
@@ -180,7 +174,7 @@ TEST(SimplifyInterfaces, AdaptiveExtractionThenSimplificationKeepsTheBoundsAgain
     const InterfaceComplex merged = extractInterfaces(field, adaptive, noProgress(), &extractStats);
     ASSERT_GT(extractStats.adaptive.blocks, 0u) << "the phantom has blocks to merge";
     Simplified s;
-    s.fine = extractInterfaces(field, fineExtraction());
+    s.fine = extractInterfaces(field, test::fineExtraction());
     s.coarse = simplifyInterfaces(merged, o, noProgress(), &s.stats);
     std::printf("phantom: fine %zu, merged %zu (%zu blocks), simplified %zu triangles\n",
                 s.fine.surface.triangles.size(), merged.surface.triangles.size(), extractStats.adaptive.blocks,

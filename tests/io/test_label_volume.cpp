@@ -7,6 +7,7 @@
 #include "io/LabelRoles.h"
 #include "io/LabelVolume.h"
 #include "support/TestData.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 
@@ -48,11 +49,6 @@ void expectSameVolume(const LabelVolume& a, const LabelVolume& b, double geometr
     EXPECT_LT((a.directionsMm - b.directionsMm).cwiseAbs().maxCoeff(), geometryTolerance);
     EXPECT_LT((a.originMm - b.originMm).cwiseAbs().maxCoeff(), geometryTolerance);
     EXPECT_EQ(a.values, b.values);
-}
-
-void writeText(const fs::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
 }
 
 /// Expects readLabelVolume(path) to throw an Error naming the file and containing `what`.
@@ -128,13 +124,13 @@ TEST(LabelVolume, ReadsADetachedHeaderAndRefusesItsTruncatedData) {
     }
     const std::string header = "NRRD0004\ntype: uint8\ndimension: 3\nspace: right-anterior-superior\nsizes: 4 3 2\n"
                                "space directions: (0.2,0,0) (0,0.2,0) (0,0,0.4)\nspace origin: (1,2,3)\nencoding: raw\n";
-    writeText(dir / "labels.nhdr", header + "data file: labels.raw\n");
+    test::writeText(dir / "labels.nhdr", header + "data file: labels.raw\n");
     const LabelVolume v = readLabelVolume((dir / "labels.nhdr").string());
     EXPECT_EQ(v.size, (std::array<int, 3>{4, 3, 2}));
     EXPECT_EQ(v.values[5], 7);
     EXPECT_EQ(v.values[23], 9);
     EXPECT_LT((v.worldOf(3, 2, 1) - Vec3(1.6, 2.4, 3.4)).norm(), 1e-12);
-    writeText(dir / "short.nhdr", header + "data file: short.raw\n");
+    test::writeText(dir / "short.nhdr", header + "data file: short.raw\n");
     expectRefused(dir / "short.nhdr", "cannot read as NRRD");
 }
 
@@ -146,7 +142,7 @@ TEST(LabelVolume, RefusesEveryKindOfBadFileNamingIt) {
         raw.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
     }
     auto nhdr = [&](const std::string& name, const std::string& body) {
-        writeText(dir / name, "NRRD0004\n" + body + "encoding: raw\ndata file: data.raw\n");
+        test::writeText(dir / name, "NRRD0004\n" + body + "encoding: raw\ndata file: data.raw\n");
         return dir / name;
     };
     expectRefused(nhdr("flat.nhdr", "type: uint8\ndimension: 2\nsizes: 8 8\n"), "2D volume");
@@ -163,11 +159,11 @@ TEST(LabelVolume, RefusesEveryKindOfBadFileNamingIt) {
         std::ofstream raw(dir / "zeros.raw", std::ios::binary);
         raw.write(reinterpret_cast<const char*>(zeros.data()), static_cast<std::streamsize>(zeros.size()));
     }
-    writeText(dir / "empty.nhdr", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: raw\ndata file: zeros.raw\n");
+    test::writeText(dir / "empty.nhdr", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: raw\ndata file: zeros.raw\n");
     expectRefused(dir / "empty.nhdr", "all background");
-    writeText(dir / "labels.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 40 40 40\nencoding: gzip\n\nnot gzip data at all");
+    test::writeText(dir / "labels.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 40 40 40\nencoding: gzip\n\nnot gzip data at all");
     expectRefused(dir / "labels.nrrd", "cannot read as NRRD");
-    writeText(dir / "labels.nii", std::string(400, 'x'));
+    test::writeText(dir / "labels.nii", std::string(400, 'x'));
     expectRefused(dir / "labels.nii", "cannot read as NIfTI");
     // A NIfTI whose data stops early.
     writeLabelVolume(smallVolume(), (dir / "whole.nii").string());
@@ -176,7 +172,7 @@ TEST(LabelVolume, RefusesEveryKindOfBadFileNamingIt) {
     expectRefused(dir / "cut.nii", "cannot read as NIfTI");
     expectRefused(dir / "missing.nii.gz", "no such file");
     // A size no file of this length can hold is refused before anything is allocated.
-    writeText(dir / "huge.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 100000 100000 1000\nencoding: gzip\n\nxx");
+    test::writeText(dir / "huge.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 100000 100000 1000\nencoding: gzip\n\nxx");
     expectRefused(dir / "huge.nrrd", "more than its file(s) can hold");
 }
 
@@ -197,13 +193,13 @@ TEST(LabelRoles, NamesFromSlicerAndFromLabelsJson) {
 
     const fs::path dir = scratchDir("label-roles");
     LabelVolume v = readLabelVolume((writeLabelVolume(smallVolume(), (dir / "labels.nrrd").string()), (dir / "labels.nrrd").string()));
-    writeText(dir / "labels.json", R"({"labels": {"1": "bone", "124": "tooth_24"}, "pdl": "generate"})");
+    test::writeText(dir / "labels.json", R"({"labels": {"1": "bone", "124": "tooth_24"}, "pdl": "generate"})");
     const LabelAssignment a = assignLabelRoles(v, Jaw::Mandible, (dir / "labels.json").string());
     EXPECT_EQ(a.roles[0].kind, LabelRole::Kind::Bone);
     EXPECT_EQ(a.roles[1].unn, 24);
     EXPECT_EQ(a.pdl, PdlLabels::Generate);
     auto refused = [&](const std::string& json, Jaw jaw, const std::string& what) {
-        writeText(dir / "labels.json", json);
+        test::writeText(dir / "labels.json", json);
         try {
             assignLabelRoles(v, jaw, (dir / "labels.json").string());
             ADD_FAILURE() << json << " was taken";
@@ -235,7 +231,7 @@ TEST(LabelVolumeCase, IsAJawOfItsOwnAndNeverBesideSurfaces) {
     const fs::path root = scratchDir("label-volume-case");
     const fs::path jaw = root / "input" / "mandible";
     writeLabelVolume(smallVolume(), (jaw / "labels.nii.gz").string());
-    writeText(jaw / "labels.json", R"({"labels": {"1": "bone", "124": "tooth_24"}})");
+    test::writeText(jaw / "labels.json", R"({"labels": {"1": "bone", "124": "tooth_24"}})");
     const CaseInfo info = discoverCase(root.string());
     ASSERT_EQ(info.jaws.size(), 1u);
     EXPECT_EQ(info.jaws[0].labelVolumePath, (jaw / "labels.nii.gz").string());

@@ -9,7 +9,7 @@ namespace jawmesh::test {
 namespace {
 namespace fs = std::filesystem;
 
-void writeText(const std::string& path, const std::string& text) {
+void writeAtomicText(const std::string& path, const std::string& text) {
     writeFileAtomically(path, [&](std::ostream& out) { out << text; }, false);
 }
 
@@ -23,8 +23,8 @@ TEST(StagedFolder, NothingArrivesBeforeCommitAndAllAtOnceAfter) {
     {
         StagedFolder staged(dest.string());
         EXPECT_NE(staged.path().find(".mandible.partial-"), std::string::npos) << staged.path();
-        writeText(staged.path() + "/a.txt", "a");
-        writeText(staged.path() + "/sub/b.txt", "b");
+        writeAtomicText(staged.path() + "/a.txt", "a");
+        writeAtomicText(staged.path() + "/sub/b.txt", "b");
         EXPECT_FALSE(fs::exists(dest));
         staged.commit(StagedFolder::Mode::Replace);
     }
@@ -37,7 +37,7 @@ TEST(StagedFolder, AbandonedStagingLeavesNothingNotEvenCreatedParents) {
     const fs::path root = scratchDir("staged-abandon");
     try {
         StagedFolder staged((root / "new" / "deeper" / "mandible").string());
-        writeText(staged.path() + "/a.txt", "a");
+        writeAtomicText(staged.path() + "/a.txt", "a");
         throw Error("a stage failed");
     } catch (const Error&) {
     }
@@ -47,18 +47,18 @@ TEST(StagedFolder, AbandonedStagingLeavesNothingNotEvenCreatedParents) {
 TEST(StagedFolder, ReplaceDropsOldFilesMergeKeepsThem) {
     const fs::path root = scratchDir("staged-modes");
     const fs::path dest = root / "jaw";
-    writeText((dest / "old.txt").string(), "old");
-    writeText((dest / "same.txt").string(), "before");
+    writeAtomicText((dest / "old.txt").string(), "old");
+    writeAtomicText((dest / "same.txt").string(), "before");
     {
         StagedFolder staged(dest.string());
-        writeText(staged.path() + "/same.txt", "after");
+        writeAtomicText(staged.path() + "/same.txt", "after");
         staged.commit(StagedFolder::Mode::Merge);
     }
     EXPECT_EQ(readBytes(dest / "old.txt"), "old");
     EXPECT_EQ(readBytes(dest / "same.txt"), "after");
     {
         StagedFolder staged(dest.string());
-        writeText(staged.path() + "/new.txt", "new");
+        writeAtomicText(staged.path() + "/new.txt", "new");
         staged.commit(StagedFolder::Mode::Replace);
     }
     EXPECT_FALSE(fs::exists(dest / "old.txt"));

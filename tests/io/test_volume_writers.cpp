@@ -8,6 +8,7 @@
 #include "io/VtuWriter.h"
 #include "support/TestData.h"
 #include "tet/GridTetMesh.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 
@@ -33,13 +34,6 @@ TetMesh smallJaw() {
         if (p.x() < 0.6) return pdlLabel(24);
         return toothLabel(25);
     });
-}
-
-std::string readText(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 void expectSameMesh(const TetMesh& a, const TetMesh& b) {
@@ -79,7 +73,7 @@ TEST(GmshWriter, AsciiAndBinaryRoundTrip) {
         o.binary = binary;
         writeGmsh(mesh, path.string(), o);
         expectSameMesh(mesh, readGmsh(path.string()));
-        const std::string text = readText(path);
+        const std::string text = test::readText(path);
         EXPECT_NE(text.find("3 124 \"tooth_24\""), std::string::npos);
         EXPECT_NE(text.find("3 224 \"pdl_24\""), std::string::npos);
         EXPECT_NE(text.find("3 1 \"bone_mandible\""), std::string::npos);
@@ -131,7 +125,7 @@ TEST(GmshWriter, RejectsBadInputAndReaderRejectsBadFiles) {
     EXPECT_FALSE(fs::exists(dir / "x.msh"));
 
     writeGmsh(smallJaw(), (dir / "good.msh").string());
-    const std::string text = readText(dir / "good.msh");
+    const std::string text = test::readText(dir / "good.msh");
     std::ofstream((dir / "truncated.msh").string()) << text.substr(0, text.size() / 2);
     EXPECT_THROW(readGmsh((dir / "truncated.msh").string()), Error);
     std::ofstream((dir / "v22.msh").string()) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
@@ -143,7 +137,7 @@ TEST(GmshWriter, RejectsBadInputAndReaderRejectsBadFiles) {
     GmshWriteOptions bin;
     bin.binary = true;
     writeGmsh(smallJaw(), (dir / "good_b.msh").string(), bin);
-    const std::string b = readText(dir / "good_b.msh");
+    const std::string b = test::readText(dir / "good_b.msh");
     std::ofstream((dir / "truncated_b.msh").string(), std::ios::binary) << b.substr(0, b.size() - 200);
     EXPECT_THROW(readGmsh((dir / "truncated_b.msh").string()), Error);
 }
@@ -152,7 +146,7 @@ TEST(VtuWriter, WritesAppendedBinaryWithLabels) {
     const auto dir = scratchDir("vtu");
     const TetMesh mesh = smallJaw();
     writeVtu(mesh, (dir / "m.vtu").string());
-    const std::string text = readText(dir / "m.vtu");
+    const std::string text = test::readText(dir / "m.vtu");
     EXPECT_NE(text.find("NumberOfPoints=\"" + std::to_string(mesh.nodes.size()) + "\""), std::string::npos);
     EXPECT_NE(text.find("NumberOfCells=\"" + std::to_string(mesh.tets.size()) + "\""), std::string::npos);
     EXPECT_NE(text.find("type=\"Int32\" Name=\"label\""), std::string::npos);
@@ -199,7 +193,7 @@ TEST(MeditWriter, WritesVerticesTetsAndTriangles) {
 TEST(LabelsJson, MatchesDesign) {
     const auto dir = scratchDir("labels-json");
     writeLabelsJson({224, 124, 1, 124}, (dir / "labels.json").string());
-    const auto j = nlohmann::json::parse(readText(dir / "labels.json"));
+    const auto j = nlohmann::json::parse(test::readText(dir / "labels.json"));
     const auto expected = nlohmann::json::parse(R"({"labels": {
         "1": {"kind": "bone", "jaw": "mandible", "name": "bone_mandible"},
         "124": {"kind": "tooth", "tooth": 24, "name": "tooth_24"},

@@ -17,10 +17,10 @@ using openvdb::Vec3d;
 
 namespace {
 
-constexpr float kVoxel = 0.05f;
+constexpr float kSphereVoxelMm = 0.05f;
 
 openvdb::FloatGrid::Ptr sphere(double r, const Vec3d& c) {
-    return openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(float(r), openvdb::Vec3f(c), kVoxel, 3.0f);
+    return openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(float(r), openvdb::Vec3f(c), kSphereVoxelMm, 3.0f);
 }
 
 /// Largest |grid - analytic| over the active voxels where |analytic| <= within (mm), skipping
@@ -54,7 +54,7 @@ TEST(Csg, UnionIntersectionDifferenceOfSpheres) {
     EXPECT_EQ(b->activeVoxelCount(), activeB) << "an input was modified";
     // Away from the intersection circle (x = 0.6) min / max are true distances.
     auto awayFromCrease = [](const Vec3d& p) { return std::abs(p[0] - 0.6) < 0.5; };
-    const double tol = 0.15 * kVoxel;
+    const double tol = 0.15 * kSphereVoxelMm;
     EXPECT_LT(maxError(*u, [&](const Vec3d& p) { return std::min(sphereSdf(p, ca, 1), sphereSdf(p, cb, 1)); }, 0.1,
                        awayFromCrease), tol);
     EXPECT_LT(maxError(*i, [&](const Vec3d& p) { return std::max(sphereSdf(p, ca, 1), sphereSdf(p, cb, 1)); }, 0.1,
@@ -68,7 +68,7 @@ TEST(Csg, UnionIntersectionDifferenceOfSpheres) {
 // 0.03 voxel of the sphere up to 2 voxels from the surface but 0.4-0.5 voxel off at 2-3 voxels
 // (measured; a check limited to 2 voxels hides it). Csg.cpp recomputes the band beyond 2 voxels by
 // closest-point propagation; measured worst case over the band 0.105-0.125 voxel.
-constexpr double kRebuildTolerance = 0.15 * kVoxel;
+constexpr double kRebuildTolerance = 0.15 * kSphereVoxelMm;
 
 TEST(Csg, OffsetMatchesAnalyticSpheresBeyondTheInputBand) {
     const Vec3d c(0.3, -0.2, 0.1);
@@ -77,7 +77,7 @@ TEST(Csg, OffsetMatchesAnalyticSpheresBeyondTheInputBand) {
         const auto o = offsetLevelSet(*s, dist, 3.0);
         SCOPED_TRACE("offset " + std::to_string(dist));
         EXPECT_LT(maxError(*o, [&](const Vec3d& p) { return sphereSdf(p, c, 1.5 + dist); }, 0.15), kRebuildTolerance);
-        EXPECT_NEAR(bandHalfWidthMm(*o), 3.0 * kVoxel, 1e-6);
+        EXPECT_NEAR(bandHalfWidthMm(*o), 3.0 * kSphereVoxelMm, 1e-6);
     }
 }
 
@@ -103,14 +103,14 @@ TEST(Csg, ClosingFillsANarrowGapOpeningRemovesASmallBall) {
     EXPECT_GT(u->tree().getValue(u->transform().worldToIndexNodeCentered(Vec3d(1.15, 0, 0))), 0.0f);
     EXPECT_LT(valueAt(Vec3d(1.15, 0, 0)), 0.0f);
     // Convex parts far from the gap are unchanged.
-    EXPECT_NEAR(valueAt(Vec3d(-1.0, 0, 0)), 0.0, 0.2 * kVoxel);
+    EXPECT_NEAR(valueAt(Vec3d(-1.0, 0, 0)), 0.0, 0.2 * kSphereVoxelMm);
     // A small ball beside a big one: opening by more than its radius removes it, the big one stays.
     const auto both = csgUnion(*sphere(1.0, ca), *sphere(0.2, Vec3d(2.0, 0, 0)));
     const auto opened = openLevelSet(*both, 0.3);
     auto at = [](const openvdb::FloatGrid& g, const Vec3d& p) { return g.tree().getValue(g.transform().worldToIndexNodeCentered(p)); };
     EXPECT_LT(at(*both, Vec3d(2.0, 0, 0)), 0.0f);
     EXPECT_GT(at(*opened, Vec3d(2.0, 0, 0)), 0.0f);
-    EXPECT_NEAR(at(*opened, Vec3d(-1.0, 0, 0)), 0.0, 0.2 * kVoxel);
+    EXPECT_NEAR(at(*opened, Vec3d(-1.0, 0, 0)), 0.0, 0.2 * kSphereVoxelMm);
 }
 
 TEST(Csg, ExtendExteriorDistanceIsEuclideanInsideTheRegionOnly) {
@@ -135,9 +135,9 @@ TEST(Csg, ExtendExteriorDistanceIsEuclideanInsideTheRegionOnly) {
         far = std::max(far, double(*it));
     }
     EXPECT_GT(n, 10000u);
-    EXPECT_LT(err, 0.1 * kVoxel);
+    EXPECT_LT(err, 0.1 * kSphereVoxelMm);
     EXPECT_LE(far, 0.4 + 1e-6);
-    EXPECT_GT(far, 0.4 - kVoxel);
+    EXPECT_GT(far, 0.4 - kSphereVoxelMm);
 }
 
 TEST(Csg, RejectsMismatchedTransforms) {

@@ -20,7 +20,7 @@ using openvdb::Vec3d;
 
 namespace {
 
-constexpr double kVoxel = 0.05;
+constexpr double kJawVoxelMm = 0.05;
 constexpr double kRoot = 1.5, kGap = 0.1, kApex = -9.0, kTop = 3.0;
 const int kUnns[] = {24, 25, 26};
 double toothX(int unn) { return 6.0 * (unn - 25); }
@@ -34,11 +34,11 @@ JawLevelSets sampleAnalyticJaw() {
             for (int unn : kUnns) d = std::max(d, -(test::capsuleSdf(p, toothX(unn), 0, kApex, kTop, kRoot) - kGap));
             return d;
         },
-        lo, hi, kVoxel);
+        lo, hi, kJawVoxelMm);
     for (int unn : kUnns) {
         const double x = toothX(unn);
         j.teeth[unn] = test::sampleSdf([&](const Vec3d& p) { return test::capsuleSdf(p, x, 0, kApex, kTop, kRoot); },
-                                       Vec3d(x - kRoot, -kRoot, kApex - kRoot), Vec3d(x + kRoot, kRoot, kTop + kRoot), kVoxel);
+                                       Vec3d(x - kRoot, -kRoot, kApex - kRoot), Vec3d(x + kRoot, kRoot, kTop + kRoot), kJawVoxelMm);
     }
     return j;
 }

@@ -4,6 +4,7 @@
 #include "io/ToothAxes.h"
 #include "levelset/Phantom.h"
 #include "support/TestData.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
@@ -318,11 +319,6 @@ TEST(Phantom, KeepsTheTeethNearestTheMidline) {
     EXPECT_THROW(makePhantom(bad), Error);
 }
 
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 TEST(Phantom, SameSeedSameFilesOtherSeedOtherFiles) {
     auto write = [](std::uint32_t seed, const std::string& name) {
         PhantomOptions o;
@@ -336,8 +332,8 @@ TEST(Phantom, SameSeedSameFilesOtherSeedOtherFiles) {
     const auto a = write(7, "phantom-seed-a"), b = write(7, "phantom-seed-b"), c = write(8, "phantom-seed-c");
     for (const std::string f : {"bone/mandible.stl", "teeth/tooth_24.stl", "teeth/tooth_23.stl", "teeth_axes_mandible.json"}) {
         ASSERT_TRUE(std::filesystem::exists(a / f)) << f;
-        EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
-        EXPECT_NE(slurp(a / f), slurp(c / f)) << f;
+        EXPECT_EQ(test::readText(a / f), test::readText(b / f)) << f;
+        EXPECT_NE(test::readText(a / f), test::readText(c / f)) << f;
     }
 }
 

@@ -121,7 +121,8 @@ std::map<Label, double> complexVolumes(const InterfaceComplex& c) {
 
 namespace {
 
-SurfaceMesh boxSurface(const Vec3& lo, const Vec3& hi, double spacing) {
+/// A closed box whose faces share their edge vertices (test::boxSurface keeps them apart).
+SurfaceMesh weldedBoxSurface(const Vec3& lo, const Vec3& hi, double spacing) {
     SurfaceMesh m;
     std::map<std::array<long, 3>, int> index;
     const Vec3 size = hi - lo;
@@ -174,7 +175,7 @@ void addSurface(InterfaceComplex& c, const SurfaceMesh& surface, Label inside, L
 InterfaceComplex nestedSpheresComplex(int subdivisions, double boxSpacing) {
     InterfaceComplex c;
     const Label bone = kMandibleBoneLabel;
-    addSurface(c, boxSurface(Vec3(-4, -2.5, -2.5), Vec3(4, 2.5, 2.5), boxSpacing), bone, kOutsideLabel);
+    addSurface(c, weldedBoxSurface(Vec3(-4, -2.5, -2.5), Vec3(4, 2.5, 2.5), boxSpacing), bone, kOutsideLabel);
     const struct { int unn; double x; } teeth[] = {{24, -1.7}, {25, 1.7}};
     for (const auto& t : teeth) {
         addSurface(c, test::icosphere(1.3, subdivisions, Vec3(t.x, 0, 0)), pdlLabel(t.unn), bone);
@@ -189,7 +190,7 @@ InterfaceComplex nestedSpheresComplex(int subdivisions, double boxSpacing) {
 InterfaceComplex thinPdlComplex(double thicknessMm, int subdivisions) {
     InterfaceComplex c;
     const Label bone = kMandibleBoneLabel;
-    addSurface(c, boxSurface(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0.5), bone, kOutsideLabel);
+    addSurface(c, weldedBoxSurface(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0.5), bone, kOutsideLabel);
     SurfaceMesh outer = test::icosphere(1.0 + thicknessMm, subdivisions);
     // turned about an oblique axis: no node of the root faces one of the socket straight on
     const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
