@@ -14,8 +14,9 @@ targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=(stl_binary stl_ascii obj ply off axes_json config_json nrrd nifti labels_json edits_json)
 
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DJAWMESH_FUZZ=ON \
-  -DJAWMESH_BUILD_TESTS=OFF -DCMAKE_CXX_FLAGS="$flags" > /dev/null
+generator=""; [ -f build-fuzz/CMakeCache.txt ] || generator="-GNinja"
+CC=clang CXX=clang++ cmake $generator -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DJAWMESH_FUZZ=ON \
+  -DJAWMESH_BUILD_TESTS=OFF -DJAWMESH_UNITY_BUILD=ON -DCMAKE_CXX_FLAGS="$flags" > /dev/null
 cmake --build build-fuzz --target jawmesh_fuzzers -j "$(nproc)"
 
 failed=()
