@@ -6,6 +6,7 @@
 #include "support/PngDecode.h"
 #include "support/SyntheticJaw.h"
 #include "support/TestData.h"
+#include "support/TextFiles.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -29,7 +30,7 @@ struct CommandResult {
 CommandResult runWithStderr(const std::string& args, const fs::path& dir) {
     const fs::path errFile = dir / "stderr.txt";
     const int status = std::system((std::string(JAWMESH_BINARY) + " " + args + " 2> " + errFile.string() + " > /dev/null").c_str());
-    return {WEXITSTATUS(status), readFileBytes(errFile.string())};
+    return {WEXITSTATUS(status), test::readText(errFile.string())};
 }
 
 /// The synthetic jaw as a run output (.msh) and its input case, in a fresh folder.
@@ -83,7 +84,7 @@ TEST_F(EvalCommand, WritesReportJsonAndSelfContainedHtml) {
     EXPECT_EQ(report["distance"]["domains"].size(), 3u);
     EXPECT_EQ(report["sections"].size(), 3u);  // arch + one per tooth
 
-    const std::string html = readFileBytes((*dir_ / "report/report.html").string());
+    const std::string html = test::readText((*dir_ / "report/report.html").string());
     for (const char* id : {"id=\"verdict\"", "id=\"sizes\"", "id=\"regions\"", "id=\"hausdorff\"", "id=\"pdl\"", "id=\"hist-radius_ratio\"",
                            "id=\"hist-volume_edge_ratio\"", "id=\"hist-radius_edge_ratio\"", "id=\"hist-min_dihedral_deg\"",
                            "id=\"hist-pdl-thickness\"", "id=\"section-arch\"", "id=\"section-tooth_24\"", "id=\"section-tooth_25\""})
@@ -112,7 +113,7 @@ TEST_F(EvalCommand, WritesReportJsonAndSelfContainedHtml) {
         EXPECT_GT(img.width, 100);
         EXPECT_GT(countColour(img, {214, 48, 48}), 100u) << "PDL visible in picture " << pictures;
         EXPECT_GT(countColour(img, {222, 196, 140}), 100u) << "bone visible in picture " << pictures;
-        EXPECT_EQ(bytes, readFileBytes((*dir_ / "report" / report["sections"][static_cast<std::size_t>(pictures)]["file"].get<std::string>()).string()));
+        EXPECT_EQ(bytes, test::readText((*dir_ / "report" / report["sections"][static_cast<std::size_t>(pictures)]["file"].get<std::string>()).string()));
     }
     EXPECT_EQ(pictures, 3);
 }
@@ -127,8 +128,8 @@ TEST_F(EvalCommand, ChromiumRendersTablesAndPictures) {
     const std::string cmd = chromium + " --headless --no-sandbox --disable-gpu --hide-scrollbars --screenshot=" + shot.string() +
                             " --window-size=1400,4000 file://" + fs::absolute(*dir_ / "report/report.html").string() + " > " +
                             (*dir_ / "chromium.log").string() + " 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << readFileBytes((*dir_ / "chromium.log").string());
-    const DecodedPng img = decodePng(readFileBytes(shot.string()));
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << test::readText((*dir_ / "chromium.log").string());
+    const DecodedPng img = decodePng(test::readText(shot.string()));
     ASSERT_EQ(img.width, 1400);
     std::size_t nonWhite = 0;
     for (const auto& p : img.rgb) nonWhite += p[0] < 240 || p[1] < 240 || p[2] < 240;

@@ -26,9 +26,8 @@ namespace fs = std::filesystem;
 
 /// Voxel by voxel, the role its labels give (kind and UNN; 0 for none), so that two files that
 /// number or name their labels differently compare as anatomy.
-std::vector<int> voxelRoles(const fs::path& volumePath) {
-    const LabelVolume v = readLabelVolume(volumePath.string());
-    const fs::path json = volumePath.parent_path() / "labels.json";
+std::vector<int> voxelRoles(const LabelVolume& v) {
+    const fs::path json = fs::path(v.path).parent_path() / "labels.json";
     const LabelAssignment a = assignLabelRoles(v, Jaw::Mandible, fs::exists(json) ? json.string() : "");
     std::vector<int> roles(v.voxels(), 0);
     for (std::size_t i = 0; i < v.segments.size(); ++i) {
@@ -41,8 +40,7 @@ std::vector<int> voxelRoles(const fs::path& volumePath) {
 }
 
 /// Voxel-to-world map of a volume: size, axes (spacing included) and origin, in mm.
-std::vector<double> gridOf(const fs::path& volumePath) {
-    const LabelVolume v = readLabelVolume(volumePath.string());
+std::vector<double> gridOf(const LabelVolume& v) {
     std::vector<double> g{double(v.size[0]), double(v.size[1]), double(v.size[2])};
     g.insert(g.end(), v.directionsMm.data(), v.directionsMm.data() + 9);
     for (int a = 0; a < 3; ++a) g.push_back(v.originMm[a]);
@@ -61,15 +59,15 @@ TEST(RunLabelMap, SlicerAndNiftiGiveOneMeshThatMeetsTheTargets) {
     // The two files are one input: the same grid in world space and the same anatomy in every
     // voxel (Slicer's segment names against labels.json). The pipeline is deterministic, so one
     // run stands for both (Determinism.* runs the whole pipeline twice).
-    const fs::path slicer = dir / "slicer" / "input" / "mandible" / "labels.seg.nrrd";
-    const fs::path nifti = dir / "nifti" / "input" / "mandible" / "labels.nii.gz";
+    const fs::path labelJaw = dir / "nifti" / "input" / "mandible";
+    const LabelVolume slicer = readLabelVolume((dir / "slicer" / "input" / "mandible" / "labels.seg.nrrd").string());
+    const LabelVolume nifti = readLabelVolume((labelJaw / "labels.nii.gz").string());
     EXPECT_EQ(gridOf(slicer), gridOf(nifti));
     EXPECT_TRUE(voxelRoles(slicer) == voxelRoles(nifti)) << "the two formats hold different anatomy";
     const std::string run = bin + " -q run " + (dir / "nifti").string() + " -o " + (dir / "out-nifti").string();
     ASSERT_EQ(std::system(run.c_str()), 0) << run;
     const fs::path msh = fs::path("mandible") / "volumetric_meshes" / "mandible.msh";
 
-    const fs::path labelJaw = dir / "nifti" / "input" / "mandible";
     test::writeLabelSurfaces(labelJaw.string(), (dir / "surfaces").string());
     const std::vector<int> teeth = test::teethIn((dir / "surfaces" / "teeth").string());
     ASSERT_EQ(teeth, std::vector<int>{24});
@@ -77,10 +75,9 @@ TEST(RunLabelMap, SlicerAndNiftiGiveOneMeshThatMeetsTheTargets) {
     test::expectRunMeetsTargets(f, teeth);
 
     // The mesh fills what the labels fill: bone, tooth and the PDL carved between them.
-    const LabelVolume v = readLabelVolume((labelJaw / "labels.nii.gz").string());
     std::size_t labelled = 0;
-    for (const LabelSegment& s : v.segments) labelled += s.voxelCount;
-    const double voxelMm3 = std::abs(v.directionsMm.determinant());
+    for (const LabelSegment& s : nifti.segments) labelled += s.voxelCount;
+    const double voxelMm3 = std::abs(nifti.directionsMm.determinant());
     const double meshMm3 = test::totalVolumeMm3(readGmsh((dir / "out-nifti" / msh).string()));
     std::cout << "mesh volume " << meshMm3 << " mm^3, labelled voxels " << labelled * voxelMm3 << " mm^3\n";
     EXPECT_NEAR(meshMm3 / (static_cast<double>(labelled) * voxelMm3), 1.0, 0.03);

@@ -7,8 +7,6 @@
 #include <array>
 #include <cstdint>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -77,13 +75,6 @@ inline DecodedPng decodePng(const std::string& png) {
         std::swap(cur, prev);
     }
     return out;
-}
-
-inline std::string readFileBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 }  // namespace jawmesh::test
