@@ -14,7 +14,8 @@ BlockSimplifier::BlockSimplifier(State& state, const Block& block, const std::ve
 
 void BlockSimplifier::run(Progress& progress) {
     const std::size_t nv = mesh_.pos.size();
-    for (std::size_t u = 0; u < nv; ++u) schedule(std::int32_t(u));
+    for (std::size_t u = 0; u < nv; ++u)
+        if (!mesh_.state.settled[std::size_t(mesh_.gid[u])]) schedule(std::int32_t(u));
     std::size_t popped = 0;
     while (!heap_.empty()) {
         const Candidate c = heap_.top();
@@ -34,12 +35,20 @@ void BlockSimplifier::run(Progress& progress) {
         const std::vector<std::int32_t> ring = ring_;
         schedule(c.v);
         for (std::int32_t w : ring) schedule(w);
+        for (std::int32_t w : ring)
+            if (mesh_.frozen[std::size_t(w)]) touchedFrozen_.push_back(mesh_.gid[std::size_t(w)]);
     }
 }
 
 BlockResult BlockSimplifier::result() {
     BlockResult r = mesh_.result();
     r.collapses = collapses_;
+    // the queue is empty: every free vertex left has had each of its collapses refused
+    for (std::size_t l = 0; l < mesh_.gid.size(); ++l)
+        if (!mesh_.frozen[l] && !mesh_.dead[l]) mesh_.state.settled[std::size_t(mesh_.gid[l])] = 1;
+    std::sort(touchedFrozen_.begin(), touchedFrozen_.end());
+    touchedFrozen_.erase(std::unique(touchedFrozen_.begin(), touchedFrozen_.end()), touchedFrozen_.end());
+    r.touchedFrozen = std::move(touchedFrozen_);
     return r;
 }
 

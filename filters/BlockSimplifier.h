@@ -49,6 +49,7 @@ private:
     std::vector<std::vector<std::int32_t>> refused_;
     std::priority_queue<Candidate> heap_;
     std::size_t collapses_ = 0;
+    std::vector<std::int32_t> touchedFrozen_;  ///< input ids, with repeats until result()
     // scratch buffers
     std::vector<std::int32_t> ring_, cand_;
     std::vector<std::pair<double, std::int32_t>> costs_;

@@ -175,6 +175,7 @@ State startState(const InterfaceComplex& input, std::size_t corners, const Input
     st.pts.resize(st.tris.size());
     st.quadrics.resize(corners);
     st.err.assign(input.surface.vertices.size(), 0.0f);
+    st.settled.assign(input.surface.vertices.size(), 0);
     placeCarriedVertices(input, st);
     st.nearTeeth = measures.nearTeeth;
     st.plateMm = &measures.plateMm;

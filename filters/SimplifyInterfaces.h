@@ -74,8 +74,8 @@ struct SimplifyOptions {
     double plateErrorFraction = 0.25;
     double plateEdgeFactor = 4.0;
     /// Parallel passes over cubic blocks of this edge (border vertices frozen, then blocks shifted
-    /// by half), then one serial pass over everything; 0 = the serial pass only. The result does
-    /// not depend on the thread count.
+    /// by half, then by a quarter), then one serial pass over what can still collapse; 0 = a
+    /// serial pass over everything only. The result does not depend on the thread count.
     double blockMm = 6.0;
     /// Test every new triangle against all triangles its box meets. Off: only against the
     /// triangles around the collapse (folds, junctions), and if the output check then finds an

@@ -64,13 +64,22 @@ void addObstacle(std::int32_t t, const BBox& box, const Cell& c, const std::map<
             }
 }
 
-/// One pass: every block simplified in parallel (blocks only write their own data), then the
-/// results put back in block order.
-std::size_t runPass(State& st, double blockMm, double offsetMm, const SimplifyOptions& o, Progress& progress,
-                    ProgressStage& stage, double from, double to) {
-    std::vector<char> border;
-    const double margin = 2.0 * std::max({o.boneMaxEdgeMm, o.toothMaxEdgeMm, o.pdlMaxEdgeMm});
-    const std::vector<Block> blocks = makeBlocks(st, blockMm, offsetMm, margin, border);
+/// The triangles of `st` that are in none of `blocks`, in order.
+std::vector<std::int32_t> trianglesOutside(const State& st, const std::vector<Block>& blocks) {
+    std::vector<char> in(st.tris.size(), 0);
+    for (const Block& b : blocks)
+        for (std::int32_t t : b.tris) in[std::size_t(t)] = 1;
+    std::vector<std::int32_t> out;
+    for (std::size_t t = 0; t < in.size(); ++t)
+        if (!in[t]) out.push_back(std::int32_t(t));
+    return out;
+}
+
+/// One pass over `blocks` (border: their shared vertices): every block simplified in parallel
+/// (blocks only write their own data), then the triangles in no block and the blocks' results put
+/// back in that order.
+std::size_t runPass(State& st, const std::vector<Block>& blocks, const std::vector<char>& border,
+                    const SimplifyOptions& o, Progress& progress, ProgressStage& stage, double from, double to) {
     std::vector<BlockResult> results(blocks.size());
     std::atomic<std::size_t> done{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 1), [&](const auto& r) {
@@ -85,6 +94,11 @@ std::size_t runPass(State& st, double blockMm, double offsetMm, const SimplifyOp
         }
     });
     State next;
+    for (std::int32_t t : trianglesOutside(st, blocks)) {
+        next.tris.push_back(st.tris[std::size_t(t)]);
+        next.sides.push_back(st.sides[std::size_t(t)]);
+        next.pts.push_back(std::move(st.pts[std::size_t(t)]));
+    }
     std::size_t collapses = 0;
     for (BlockResult& r : results) {
         next.tris.insert(next.tris.end(), r.tris.begin(), r.tris.end());
@@ -92,6 +106,7 @@ std::size_t runPass(State& st, double blockMm, double offsetMm, const SimplifyOp
         for (auto& p : r.pts) next.pts.push_back(std::move(p));
         for (std::uint64_t key : r.takenCurves) st.curvePts.erase(key);
         for (auto& [key, pts] : r.curves) st.curvePts[key] = std::move(pts);
+        for (std::int32_t v : r.touchedFrozen) st.settled[std::size_t(v)] = 0;
         collapses += r.collapses;
     }
     st.tris = std::move(next.tris);
@@ -134,13 +149,52 @@ std::vector<Block> makeBlocks(const State& st, double blockMm, double offsetMm, 
     return blocks;
 }
 
+std::vector<Block> unsettledBlock(const State& st, std::vector<char>& border) {
+    const std::size_t nv = st.points->size();
+    // the vertices that may still collapse, then their neighbours: a collapse's both ends need
+    // their whole star in the block
+    std::vector<char> near(nv, 0), inBlock(st.tris.size(), 0);
+    for (int ring = 0; ring < 2; ++ring) {
+        std::vector<char> grown = near;
+        for (const Tri& f : st.tris) {
+            bool hit = false;
+            for (std::int32_t v : f) hit = hit || (ring == 0 ? !st.settled[std::size_t(v)] : near[std::size_t(v)]);
+            if (hit)
+                for (std::int32_t v : f) grown[std::size_t(v)] = 1;
+        }
+        near = std::move(grown);
+    }
+    Block block;
+    border.assign(nv, 0);
+    for (std::size_t t = 0; t < st.tris.size(); ++t) {
+        const Tri& f = st.tris[t];
+        inBlock[t] = near[std::size_t(f[0])] || near[std::size_t(f[1])] || near[std::size_t(f[2])];
+        if (inBlock[t]) block.tris.push_back(std::int32_t(t));
+    }
+    for (std::size_t t = 0; t < st.tris.size(); ++t)
+        if (!inBlock[t])
+            for (std::int32_t v : st.tris[t]) border[std::size_t(v)] = 1;
+    return {block};
+}
+
 std::size_t simplifyInPasses(State& st, const SimplifyOptions& o, Progress& progress, ProgressStage& stage) {
     std::size_t collapses = 0;
+    std::vector<char> border;
+    const double margin = 2.0 * std::max({o.boneMaxEdgeMm, o.toothMaxEdgeMm, o.pdlMaxEdgeMm});
     if (o.blockMm > 0) {
-        collapses += runPass(st, o.blockMm, 0.0, o, progress, stage, 0.0, 0.6);
-        collapses += runPass(st, o.blockMm, 0.5 * o.blockMm, o, progress, stage, 0.6, 0.9);
+        collapses += runPass(st, makeBlocks(st, o.blockMm, 0.0, margin, border), border, o, progress, stage, 0.0, 0.6);
+        collapses += runPass(st, makeBlocks(st, o.blockMm, 0.5 * o.blockMm, margin, border), border, o, progress,
+                             stage, 0.6, 0.8);
+        // the second pass's borders inside, so the serial pass is left little
+        collapses += runPass(st, makeBlocks(st, o.blockMm, 0.25 * o.blockMm, margin, border), border, o, progress,
+                             stage, 0.8, 0.9);
     }
-    collapses += runPass(st, 0.0, 0.0, o, progress, stage, 0.9, 0.97);
+    // The last pass: serial, over what may still collapse (everything when the exhaustive
+    // intersection test needs every triangle in its grid).
+    const std::vector<Block> last = o.blockMm > 0 && !o.exhaustiveIntersectionChecks
+                                        ? unsettledBlock(st, border)
+                                        : makeBlocks(st, 0.0, 0.0, margin, border);
+    collapses += runPass(st, last, border, o, progress, stage, 0.9, 0.97);
     return collapses;
 }
 

@@ -19,8 +19,13 @@ namespace jawmesh::simplify {
 std::vector<Block> makeBlocks(const State& st, double blockMm, double offsetMm, double marginMm,
                               std::vector<char>& border);
 
-/// Blocks, blocks shifted by half a block (the first pass's borders inside), then everything
-/// (SimplifyOptions::blockMm; 0: the last pass only). Updates `st`; reports progress on `stage`
+/// One block of the live triangles within two rings of a vertex that is not settled (State::
+/// settled), its border in `border`: all that a last pass can still collapse.
+std::vector<Block> unsettledBlock(const State& st, std::vector<char>& border);
+
+/// Blocks, blocks shifted by half a block (the first pass's borders inside), by a quarter (the
+/// second's inside), then one serial pass over the unsettled block (everything with
+/// SimplifyOptions::exhaustiveIntersectionChecks; SimplifyOptions::blockMm 0: that pass only). Updates `st`; reports progress on `stage`
 /// up to 0.97. Returns the number of collapses. Throws Cancelled. The result does not depend on
 /// the thread count.
 std::size_t simplifyInPasses(State& st, const SimplifyOptions& options, Progress& progress, ProgressStage& stage);

@@ -51,6 +51,10 @@ struct State {
     /// per corner of the input: error its triangles' samples already have (InterfaceComplex::sampleErrorMm)
     const std::vector<float>* spentMm = nullptr;
     std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curvePts;  ///< per curve edge
+    /// per input vertex: every collapse of it was refused in the last pass where it was free, and
+    /// no collapse has changed its star since; the next pass tries it only once one does (as a
+    /// block does within a pass: the final passes were otherwise spent refusing them all again)
+    std::vector<char> settled;
 };
 
 /// One block of a pass: its triangles (indices into State::tris) and, for the intersection test
@@ -67,6 +71,7 @@ struct BlockResult {
     std::vector<std::vector<std::int32_t>> pts;
     std::vector<std::uint64_t> takenCurves;  ///< curve keys this block owned (replaced by curves)
     std::unordered_map<std::uint64_t, std::vector<std::int32_t>> curves;
+    std::vector<std::int32_t> touchedFrozen;  ///< frozen vertices whose star a collapse changed (input ids)
     std::size_t collapses = 0;
 };
 
