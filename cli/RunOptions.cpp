@@ -84,7 +84,7 @@ void readWholeKey(const nlohmann::json& j, const std::string& path, const char* 
 void checkRanges(const std::string& name, RunOptions& o) {
     for (const auto& k : kNumberKeys) requireRange(name, k.key, k.ref(o), k.lo, k.hi, k.loOpen);
     const int levels = o.extract.adaptive.maxLevel;
-    requireRange(name, "surface_adaptive_levels", levels, 0, 6);
+    requireRange(name, "surface_adaptive_levels", levels, 0, 5);
     const int gap = o.extract.adaptive.layerGapVoxels;
     requireRange(name, "surface_layer_gap_voxels", gap, 0, 8);
     if (o.carve.profile) {
@@ -148,7 +148,7 @@ void applyRunConfigText(const std::string& text, const std::string& path, RunOpt
         if (!known.contains(key) && key != "pdl_profile_mm" && key != "edits") throw Error(path, "unknown config key '" + key + "'");
     try {
         for (const auto& k : kNumberKeys) readKey(j, k.key, k.ref(o));
-        readWholeKey(j, path, "surface_adaptive_levels", 0, 6, o.extract.adaptive.maxLevel);
+        readWholeKey(j, path, "surface_adaptive_levels", 0, 5, o.extract.adaptive.maxLevel);
         readWholeKey(j, path, "surface_layer_gap_voxels", 0, 8, o.extract.adaptive.layerGapVoxels);
         readKey(j, "write_levelsets", o.writeLevelSets);
         readKey(j, "from_vdb", o.fromVdb);

@@ -589,7 +589,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
     AdaptiveStats& st = stats ? *stats : local;
     st = AdaptiveStats{};
     st.fineCells = cells.size();
-    const int top = std::clamp(options.maxLevel, 0, 6);
+    const int top = std::clamp(options.maxLevel, 0, 5);
     const MergeRule merge{options.ringVoxels, options.layerGapVoxels};
     Mesh mesh{quads, P, {}, {}, {}, {}, {}};
     mesh.vertexOf.resize(cells.size());

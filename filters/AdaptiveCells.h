@@ -43,7 +43,8 @@
 namespace jawmesh {
 
 struct AdaptiveOptions {
-    /// Largest block: 2^maxLevel dual cells per side (3: 8 voxels, 0.4 mm at 0.05 mm); 0 = off.
+    /// Largest block: 2^maxLevel dual cells per side (3: 8 voxels, 0.4 mm at 0.05 mm); 0 = off,
+    /// at most 5 (the block tests take a block and its ring as rows of 64 bits).
     int maxLevel = 3;
     InterfaceBounds bounds;        ///< per interface (set from the simplification's options)
     double boneNearTeethMm = 2.0;  ///< bone / outside nearer a tooth or PDL gets the near bound

@@ -59,7 +59,7 @@ private:
 
 /// The two labels of the closed voxel cube [lo, lo + size]^3 when their interface there is one disc
 /// as described above and `allowed` accepts the pair (called with the smaller label first); empty
-/// otherwise. size >= 1. Cost: O(size^3) label reads.
+/// otherwise. 1 <= size <= 63. Cost: O(size^3) label reads.
 std::optional<std::array<Label, 2>> blockIsOneDisc(const LabelWindow& labels, const openvdb::Coord& lo, int size,
                                                    const std::function<bool(Label, Label)>& allowed);
 
@@ -68,7 +68,7 @@ struct BlockLayer {
     Label middle = 0;            ///< the layer's own label
 };
 
-/// The layer of the closed voxel cube [lo, lo + size]^3 as described above, or empty. Cost:
+/// The layer of the closed voxel cube [lo, lo + size]^3 as described above, or empty; size <= 63. Cost:
 /// O(size^3 minGapVoxels) label reads and mask operations.
 std::optional<BlockLayer> blockIsLayer(const LabelWindow& labels, const openvdb::Coord& lo,
                                        int size, int minGapVoxels);

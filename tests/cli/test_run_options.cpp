@@ -56,7 +56,7 @@ TEST(RunOptions, RefusesOutOfRangeValuesNamingTheKey) {
     RunOptions o = defaultRunOptions();
     EXPECT_THROW(applyRunConfigText(R"({"surface_pdl_max_edge": 0.5})", "typo.json", o), Error);
     // the adaptive extraction's levels: a whole number from 0 (the fine extraction) to 6
-    for (const char* bad : {R"({"surface_adaptive_levels": 2.5})", R"({"surface_adaptive_levels": 7})",
+    for (const char* bad : {R"({"surface_adaptive_levels": 2.5})", R"({"surface_adaptive_levels": 6})",
                             R"({"surface_adaptive_levels": -1})"}) {
         try {
             applyRunConfigText(bad, "levels.json", o);
