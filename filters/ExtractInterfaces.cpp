@@ -56,19 +56,24 @@ constexpr int kCellEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3
 
 namespace {
 
-/// Repairs and absorbs in `labels` (field.labels or a copy of it) as labelsToExtract describes.
-void prepareLabels(openvdb::Int32Grid& labels, const LabelField& field, const ExtractOptions& options,
-                   Progress& progress, ExtractStats* stats) {
+/// Repairs and absorbs in `labels` (field.labels or a copy of it) as labelsToExtract describes;
+/// returns the label edges of the result. The edges are found once and then only looked at again
+/// around what each step relabels (three searches were 5 s of the shared mandible's extraction).
+std::vector<LabelEdge> prepareLabels(openvdb::Int32Grid& labels, const LabelField& field, const ExtractOptions& options,
+                                     Progress& progress, ExtractStats* stats) {
     const double voxelMm = labels.voxelSize()[0];
     const auto voxels = [&](double mm3) { return std::size_t(std::max(0.0, mm3) / (voxelMm * voxelMm * voxelMm)); };
     const std::size_t maxPocketVoxels = voxels(options.maxEnclosedOutsideMm3);
     const std::size_t maxFragmentVoxels = voxels(options.maxFragmentMm3);
     ExtractStats local;
     ExtractStats& st = stats ? *stats : local;
-    std::vector<Coord> relabelled;
+    std::vector<LabelEdge> edges = findLabelEdges(labels, field.distances);
+    std::vector<Coord> relabelled, repaired;
     const auto absorb = [&] {
         relabelled.clear();
-        const SmallComponentStats f = absorbSmallComponents(labels, maxPocketVoxels, maxFragmentVoxels, &relabelled);
+        const SmallComponentStats f =
+            absorbSmallComponents(labels, maxPocketVoxels, maxFragmentVoxels, &relabelled, &edges);
+        updateLabelEdges(edges, labels, relabelled);
         st.pocketsFilled += f.pockets;
         st.pocketVoxelsFilled += f.pocketVoxels;
         st.fragmentsAbsorbed += f.fragments;
@@ -81,16 +86,21 @@ void prepareLabels(openvdb::Int32Grid& labels, const LabelField& field, const Ex
         // repair raises voxels to higher-priority regions, which can close pockets and cut off
         // fragments, and absorbing can leave diagonal contacts (only around what it relabelled):
         // alternate until stable.
-        makeLabelsWellComposed(labels, field.distances, progress);
+        makeLabelsWellComposed(labels, field.distances, edges, progress, &repaired);
+        updateLabelEdges(edges, labels, repaired);
         for (int round = 0; absorbing && round < 4; ++round) {
             if (absorb() == 0) break;
-            if (makeLabelsWellComposed(labels, field.distances, progress, &relabelled) == 0) break;
+            repaired.clear();
+            const std::size_t n = makeLabelsWellComposed(labels, field.distances, progress, &relabelled, &repaired);
+            updateLabelEdges(edges, labels, repaired);
+            if (n == 0) break;
         }
     } else {
         if (absorbing) absorb();
         if (countCriticalCells(labels, field.distances) > 0)
             throw Error("interface extraction: the label field has diagonal-only contacts");
     }
+    return edges;
 }
 
 }  // namespace
@@ -118,10 +128,8 @@ InterfaceComplex extractInterfaces(LabelField&& field, const ExtractOptions& opt
     // Prepared in place when nothing else holds the grid (a copy is ~0.3 GB on the mandible).
     openvdb::Int32Grid::Ptr labels = field.labels.use_count() == 1 ? field.labels : field.labels->deepCopy();
     field.labels.reset();
-    prepareLabels(*labels, field, options, progress, stats);
+    std::vector<LabelEdge> edges = prepareLabels(*labels, field, options, progress, stats);
     stage.update(0.3);
-
-    std::vector<LabelEdge> edges = findLabelEdges(*labels, field.distances);
     const std::vector<Coord> cells = dualCellsOf(edges);
     returnFreedMemory();  // the repair's and the cell masks' grid leaves, before the big arrays
     progress.checkCancelled();

@@ -113,6 +113,44 @@ std::vector<LabelEdge> findLabelEdges(const openvdb::Int32Grid& labels,
     return edges;
 }
 
+void updateLabelEdges(std::vector<LabelEdge>& edges, const openvdb::Int32Grid& labels,
+                      const std::vector<openvdb::Coord>& changed) {
+    if (changed.empty()) return;
+    const auto before = [](const LabelEdge& a, const LabelEdge& b) {
+        return a.voxel < b.voxel || (a.voxel == b.voxel && a.axis < b.axis);
+    };
+    const auto same = [](const LabelEdge& a, const LabelEdge& b) { return a.voxel == b.voxel && a.axis == b.axis; };
+    std::vector<LabelEdge> recheck;  // the six edges at every changed voxel
+    recheck.reserve(6 * changed.size());
+    for (const openvdb::Coord& v : changed)
+        for (int axis = 0; axis < 3; ++axis) {
+            openvdb::Coord u = v;
+            u[axis] -= 1;
+            recheck.push_back({v, axis});
+            recheck.push_back({u, axis});
+        }
+    std::sort(recheck.begin(), recheck.end(), before);
+    recheck.erase(std::unique(recheck.begin(), recheck.end(), same), recheck.end());
+    // in place: the edges are a few hundred megabytes on a jaw
+    edges.erase(std::remove_if(edges.begin(), edges.end(),
+                               [&](const LabelEdge& e) { return std::binary_search(recheck.begin(), recheck.end(), e, before); }),
+                edges.end());
+    auto acc = labels.getConstAccessor();
+    std::vector<LabelEdge> changes;
+    for (const LabelEdge& e : recheck) {
+        openvdb::Coord w = e.voxel;
+        w[e.axis] += 1;
+        if (acc.getValue(e.voxel) != acc.getValue(w)) changes.push_back(e);
+    }
+    // merged from the back, so no copy of the edges is made
+    std::size_t kept = edges.size(), added = changes.size();
+    edges.resize(kept + added);
+    for (std::size_t out = kept + added; added > 0; --out) {
+        if (kept > 0 && before(changes[added - 1], edges[kept - 1])) edges[out - 1] = edges[--kept];
+        else edges[out - 1] = changes[--added];
+    }
+}
+
 std::vector<openvdb::Coord> dualCellsOf(const std::vector<LabelEdge>& edges) {
     // Each edge's four cells are marked in a mask (one per thread, then united: the same set
     // whatever the threads), and only the distinct cells are sorted. Sorting the four copies of

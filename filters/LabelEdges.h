@@ -29,6 +29,12 @@ struct LabelEdge {
 std::vector<LabelEdge> findLabelEdges(const openvdb::Int32Grid& labels,
                                       const std::map<Label, openvdb::FloatGrid::Ptr>& distances);
 
+/// `edges` (findLabelEdges of `labels` before the voxels `changed` were relabelled) made the label
+/// edges of `labels` now: the edges at those voxels looked at again, the rest kept. Far cheaper
+/// than findLabelEdges again for the few voxels a repair changes. Cost: O(edges + changed log changed).
+void updateLabelEdges(std::vector<LabelEdge>& edges, const openvdb::Int32Grid& labels,
+                      const std::vector<openvdb::Coord>& changed);
+
 /// Sorted, unique lowest corners of the dual cells (2x2x2 voxel blocks) that contain a label edge:
 /// for edge (v, axis) these are v - a e1 - b e2 for a, b in {0, 1}, e1, e2 the other two axes.
 std::vector<openvdb::Coord> dualCellsOf(const std::vector<LabelEdge>& edges);

@@ -10,6 +10,8 @@
 // between PDL 25 and the air stopped a run of the 2-tooth phantom without tooth 24).
 #pragma once
 
+#include "filters/LabelEdges.h"
+
 #include "io/Labels.h"
 
 #include <openvdb/openvdb.h>
@@ -33,10 +35,12 @@ struct SmallComponentStats {
 /// its largest component even when all are small, so no region disappears. Larger enclosed
 /// cavities (a canal) are kept. Labels are read before any is changed, so the result does not
 /// depend on the visiting order. Deterministic.
-/// The voxels it relabels are appended to `relabelled` when given.
+/// The voxels it relabels are appended to `relabelled` when given. `edges`, when given, are the
+/// label edges of `labels` (findLabelEdges; else they are searched for).
 /// Cost: a flood fill bounded by the limit from every voxel next to another label.
 SmallComponentStats absorbSmallComponents(openvdb::Int32Grid& labels, std::size_t maxOutsideVoxels,
                                           std::size_t maxRegionVoxels,
-                                          std::vector<openvdb::Coord>* relabelled = nullptr);
+                                          std::vector<openvdb::Coord>* relabelled = nullptr,
+                                          const std::vector<LabelEdge>* edges = nullptr);
 
 }  // namespace jawmesh

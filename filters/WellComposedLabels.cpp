@@ -189,14 +189,14 @@ int labelConnectPriority(Label label) {
     return 0;
 }
 
-std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
-                                   const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
-                                   Progress& progress, const std::vector<openvdb::Coord>* changedVoxels) {
+namespace {
+
+/// The repair sweeps, starting from the dual cells `cells`.
+std::size_t repairCells(openvdb::Int32Grid& labels, const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
+                        std::vector<openvdb::Coord> cells, Progress& progress, std::vector<openvdb::Coord>* out) {
     std::size_t relabelled = 0;
     // After the first sweep only the cells around what it changed are looked at again: a cell
     // none of whose corners changed is as it was, and every critical cell changed a corner.
-    std::vector<openvdb::Coord> cells =
-        changedVoxels ? cellsAround(*changedVoxels) : dualCellsOf(findLabelEdges(labels, distances));
     std::vector<openvdb::Coord> fixed;
     for (int sweep = 0; sweep < 256; ++sweep) {
         progress.checkCancelled();
@@ -204,12 +204,31 @@ std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
         if (fixes.empty()) return relabelled;
         fixed.clear();
         for (const Fix& f : fixes) fixed.push_back(f.voxel);
+        if (out) out->insert(out->end(), fixed.begin(), fixed.end());
         cells = cellsAround(fixed);
         auto acc = labels.getAccessor();
         for (const Fix& f : fixes) acc.setValue(f.voxel, f.to);
         relabelled += fixes.size();
     }
     throw Error("label field: diagonal contacts between regions could not be removed in 256 sweeps");
+}
+
+}  // namespace
+
+std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
+                                   const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
+                                   Progress& progress, const std::vector<openvdb::Coord>* changedVoxels,
+                                   std::vector<openvdb::Coord>* relabelled) {
+    return repairCells(labels, distances,
+                       changedVoxels ? cellsAround(*changedVoxels) : dualCellsOf(findLabelEdges(labels, distances)),
+                       progress, relabelled);
+}
+
+std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
+                                   const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
+                                   const std::vector<LabelEdge>& edges, Progress& progress,
+                                   std::vector<openvdb::Coord>* relabelled) {
+    return repairCells(labels, distances, dualCellsOf(edges), progress, relabelled);
 }
 
 std::size_t countCriticalCells(const openvdb::Int32Grid& labels,

@@ -15,6 +15,7 @@
 // signed distance), then lowest coordinate, so the result is deterministic.
 #pragma once
 
+#include "filters/LabelEdges.h"
 #include "io/Labels.h"
 #include "io/Progress.h"
 
@@ -36,10 +37,18 @@ int labelConnectPriority(Label label);
 /// dual cells around them are looked at.
 /// Cost: one findLabelEdges (none with changedVoxels), then O(cells looked at) per sweep; usually
 /// 1-3 sweeps.
+/// The voxels it relabels are appended to `relabelled` when given (each once per sweep).
 std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
                                    const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
                                    Progress& progress = noProgress(),
-                                   const std::vector<openvdb::Coord>* changedVoxels = nullptr);
+                                   const std::vector<openvdb::Coord>* changedVoxels = nullptr,
+                                   std::vector<openvdb::Coord>* relabelled = nullptr);
+
+/// The same, with the label edges of `labels` (findLabelEdges) given: none is searched for.
+std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
+                                   const std::map<Label, openvdb::FloatGrid::Ptr>& distances,
+                                   const std::vector<LabelEdge>& edges, Progress& progress,
+                                   std::vector<openvdb::Coord>* relabelled);
 
 /// Number of voxels one repair sweep would relabel (0 when every region is well-composed).
 std::size_t countCriticalCells(const openvdb::Int32Grid& labels,

@@ -80,5 +80,34 @@ TEST(SmallComponents, RegionFragmentsGoToTheirSurroundingsButNoRegionVanishes) {
     EXPECT_EQ(absorbSmallComponents(g, 0, 8).fragments, 0u);
 }
 
+// Hundreds of thousands of start voxels (the search runs in chunks of them): every pocket is found
+// once, whichever chunks its starts fall in, and the label edges updated around what was relabelled
+// are the edges found again from scratch.
+TEST(SmallComponents, ManyPocketsEachFoundOnceAndTheEdgesUpdated) {
+    openvdb::Int32Grid g(kOutsideLabel);
+    fillBox(g, CoordBBox(Coord(0), Coord(89)), 1);
+    int made = 0;
+    for (int x = 2; x < 87; x += 3)  // 2-voxel pockets in every slab pair: chunk borders cut through some
+        for (int y = 2; y < 87; y += 6)
+            for (int z = 2; z < 87; z += 6) {
+                fillBox(g, CoordBBox(Coord(x, y, z), Coord(x + 1, y, z)), kOutsideLabel);
+                ++made;
+            }
+    std::vector<LabelEdge> edges = findLabelEdges(g, {});
+    ASSERT_GT(2 * edges.size(), std::size_t(1) << 17);  // more than one chunk of starts
+    std::vector<Coord> relabelled;
+    const SmallComponentStats st = absorbSmallComponents(g, 8, 0, &relabelled, &edges);
+    EXPECT_EQ(st.pockets, std::size_t(made));
+    EXPECT_EQ(st.pocketVoxels, 2 * std::size_t(made));
+    EXPECT_EQ(relabelled.size(), 2 * std::size_t(made));
+    updateLabelEdges(edges, g, relabelled);
+    const std::vector<LabelEdge> again = findLabelEdges(g, {});
+    ASSERT_EQ(edges.size(), again.size());
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        EXPECT_EQ(edges[i].voxel, again[i].voxel);
+        EXPECT_EQ(edges[i].axis, again[i].axis);
+    }
+}
+
 }  // namespace
 }  // namespace jawmesh
