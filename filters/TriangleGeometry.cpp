@@ -17,19 +17,22 @@ double squaredDistanceToSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 double squaredDistanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    if (ab.cross(ac).squaredNorm() <= 1e-30 * std::max(ab.squaredNorm(), ac.squaredNorm()) * ac.squaredNorm())
-        return std::min({squaredDistanceToSegment(p, a, b), squaredDistanceToSegment(p, b, c),
-                         squaredDistanceToSegment(p, c, a)});
+    // Ericson's Voronoi regions. The three vertex regions hold for a degenerate triangle too (the
+    // vertex is then the nearest point of its segments); the rest divide, so a degenerate one
+    // is measured as its three segments from there on (this test first was a fifth of the cost).
     const double d1 = ab.dot(ap), d2 = ac.dot(ap);
     if (d1 <= 0 && d2 <= 0) return ap.squaredNorm();
     const Vec3 bp = p - b;
     const double d3 = ab.dot(bp), d4 = ac.dot(bp);
     if (d3 >= 0 && d4 <= d3) return bp.squaredNorm();
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).squaredNorm();
     const Vec3 cp = p - c;
     const double d5 = ab.dot(cp), d6 = ac.dot(cp);
     if (d6 >= 0 && d5 <= d6) return cp.squaredNorm();
+    if (ab.cross(ac).squaredNorm() <= 1e-30 * std::max(ab.squaredNorm(), ac.squaredNorm()) * ac.squaredNorm())
+        return std::min({squaredDistanceToSegment(p, a, b), squaredDistanceToSegment(p, b, c),
+                         squaredDistanceToSegment(p, c, a)});
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).squaredNorm();
     const double vb = d5 * d2 - d1 * d6;
     if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).squaredNorm();
     const double va = d3 * d6 - d5 * d4;
