@@ -11,7 +11,6 @@
 #pragma once
 
 #include "filters/LabelEdges.h"
-
 #include "io/Labels.h"
 
 #include <openvdb/openvdb.h>
