@@ -23,7 +23,7 @@ struct CubeMask {
     std::uint64_t full() const { return n == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << n) - 1; }
 };
 
-int popcount(std::uint64_t x) { return __builtin_popcountll(x); }
+inline int popcount(std::uint64_t x) { return __builtin_popcountll(x); }
 
 /// Label changes along the line of n voxels from `from` in direction `step` (unit axis vectors).
 int changesAlong(const CubeMask& m, std::array<int, 3> from, const std::array<int, 3>& step) {
@@ -105,21 +105,35 @@ void joinOverlapping(const Run* a, std::size_t na, const Run* b, std::size_t nb,
             if (a[i].bits & b[j].bits) uf.join(a[i].id, b[j].id);
 }
 
-/// Number of 4-connected components of the set bits of `face` (n rows).
-int faceComponents(const std::vector<std::uint64_t>& face) {
+/// Number of connected components of the set bits of `rows`: `layers` layers of n rows each (row
+/// y of layer z at z * n + y), a bit joined to its neighbours in its row, in the rows beside it in
+/// its layer and in the same row of the layers beside it (a face: one layer, 4-connected; a cube:
+/// n layers, 6-connected). Runs of bits are joined across rows.
+int rowComponents(const std::vector<std::uint64_t>& rows, int n, int layers) {
     thread_local Components uf;  // scratch: this runs millions of times
     thread_local std::vector<Run> runs;
     thread_local std::vector<std::size_t> start;
     uf.clear();
     runs.clear();
     start.assign(1, 0);
-    for (std::size_t v = 0; v < face.size(); ++v) {
-        appendRuns(face[v], uf, runs);
-        start.push_back(runs.size());
-        if (v > 0)
-            joinOverlapping(&runs[start[v]], start[v + 1] - start[v], &runs[start[v - 1]], start[v] - start[v - 1], uf);
-    }
+    for (int z = 0; z < layers; ++z)
+        for (int y = 0; y < n; ++y) {
+            const std::size_t i = std::size_t(z * n + y);
+            appendRuns(rows[i], uf, runs);
+            start.push_back(runs.size());
+            const auto join = [&](std::size_t j) {
+                joinOverlapping(&runs[start[i]], start[i + 1] - start[i], &runs[start[j]], start[j + 1] - start[j], uf);
+            };
+            if (y > 0) join(i - 1);
+            if (z > 0) join(i - std::size_t(n));
+        }
     return uf.count;
+}
+
+/// `rows` with every bit of the n-bit rows flipped: the other label's mask.
+std::vector<std::uint64_t>& complement(std::vector<std::uint64_t>& rows, const CubeMask& m) {
+    for (std::uint64_t& r : rows) r = ~r & m.full();
+    return rows;
 }
 
 /// Face `side` (0 or n - 1) across `axis` as n rows of n bits (any fixed layout: the tests below
@@ -153,8 +167,7 @@ bool facesCrossedInOneArc(const CubeMask& m) {
             for (std::size_t i = 0; i < ring.size(); ++i) changes += ring[i] != ring[(i + 1) % ring.size()];
             if (changes > 2) return false;
             other = face;
-            for (std::uint64_t& r : other) r = ~r & m.full();
-            if (faceComponents(face) > 1 || faceComponents(other) > 1) return false;
+            if (rowComponents(face, n, 1) > 1 || rowComponents(complement(other, m), n, 1) > 1) return false;
         }
     return true;
 }
@@ -199,7 +212,6 @@ bool cornersFormOneLoop(const CubeMask& m) {
 /// Euler characteristic of the voxel complex of `rows` (n x n rows): vertices - edges + squares -
 /// cubes, each counted at its lowest corner with whole-row bit operations.
 JAWMESH_POPCNT_CLONES long eulerCharacteristic(const std::vector<std::uint64_t>& rows, int n) {
-    const auto popcount = [](std::uint64_t x) { return __builtin_popcountll(x); };
     const auto r = [&](int y, int z) { return y < n && z < n ? rows[std::size_t(z * n + y)] : std::uint64_t(0); };
     long chi = 0;
     for (int z = 0; z < n; ++z)
@@ -213,35 +225,12 @@ JAWMESH_POPCNT_CLONES long eulerCharacteristic(const std::vector<std::uint64_t>&
     return chi;
 }
 
-/// Number of 6-connected components of `rows` (n x n rows): runs joined across rows.
-int components6(const std::vector<std::uint64_t>& rows, int n) {
-    thread_local Components uf;  // scratch
-    thread_local std::vector<Run> runs;
-    thread_local std::vector<std::size_t> start;
-    uf.clear();
-    runs.clear();
-    start.assign(1, 0);
-    for (int z = 0; z < n; ++z)
-        for (int y = 0; y < n; ++y) {
-            const std::size_t i = std::size_t(z * n + y);
-            appendRuns(rows[i], uf, runs);
-            start.push_back(runs.size());
-            const auto join = [&](std::size_t j) {
-                joinOverlapping(&runs[start[i]], start[i + 1] - start[i], &runs[start[j]], start[j + 1] - start[j], uf);
-            };
-            if (y > 0) join(i - 1);
-            if (z > 0) join(i - std::size_t(n));
-        }
-    return uf.count;
-}
-
 /// One 6-connected component with Euler characteristic 1: a ball.
 bool isBall(const CubeMask& m, bool value) {
     thread_local std::vector<std::uint64_t> rows;  // scratch
     rows = m.rows;
-    if (!value)
-        for (std::uint64_t& r : rows) r = ~r & m.full();
-    return eulerCharacteristic(rows, m.n) == 1 && components6(rows, m.n) == 1;
+    if (!value) complement(rows, m);
+    return eulerCharacteristic(rows, m.n) == 1 && rowComponents(rows, m.n, m.n) == 1;
 }
 
 /// The disc tests of the header on a two-valued mask.

@@ -55,7 +55,7 @@ TEST(RunOptions, RefusesOutOfRangeValuesNamingTheKey) {
     }
     RunOptions o = defaultRunOptions();
     EXPECT_THROW(applyRunConfigText(R"({"surface_pdl_max_edge": 0.5})", "typo.json", o), Error);
-    // the adaptive extraction's levels: a whole number from 0 (the fine extraction) to 6
+    // the adaptive extraction's levels: a whole number from 0 (the fine extraction) to 5
     for (const char* bad : {R"({"surface_adaptive_levels": 2.5})", R"({"surface_adaptive_levels": 6})",
                             R"({"surface_adaptive_levels": -1})"}) {
         try {
