@@ -54,9 +54,20 @@ struct Objective {
     /// star while pushing several good ones under the target (the shared mandible: 260 tets left
     /// under 10 degrees that way, 62 with this rule, from TetGen's 27,619).
     bool betterThan(const Objective& o) const {
-        if (worst < o.worst - 1e-12 || deficit > o.deficit + 1e-12) return false;
+        if (worst < o.worst - kTie || deficit > o.deficit + kTie) return false;
         return worst > o.worst + 1e-9 || deficit < o.deficit - 1e-9;
     }
+    /// Worse than everything: betterThan nothing, and no partial objective is worse than it.
+    static Objective hopeless() { return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}; }
+    /// A bound no objective can pass and still win against this one after a chain of `steps`
+    /// betterThan comparisons (each may give up kTie in either part).
+    Objective hopelessBelow(std::size_t steps) const {
+        const double slack = 2.0 * kTie * double(steps + 1);
+        return {worst - slack, deficit + slack};
+    }
+
+private:
+    static constexpr double kTie = 1e-12;  ///< below rounding of a score or a shortfall: not worse
 };
 
 /// The rule an operation applies to each candidate it could make, given the objective `after` of

@@ -10,13 +10,16 @@
 
 namespace jawmesh {
 
-Objective objectiveWith(const std::vector<Vec3>& nodes, const std::vector<Tet>& tets, std::int32_t v, const Vec3& p, double target) {
+Objective objectiveWith(const std::vector<Vec3>& nodes, const std::vector<Tet>& tets, std::int32_t v, const Vec3& p, double target,
+                        const Objective& cannotBeat) {
     Objective o;
     for (const Tet& e : tets) {
         const Vec3* q[4];
         for (int k = 0; k < 4; ++k) q[k] = e[std::size_t(k)] == v ? &p : &nodes[std::size_t(e[std::size_t(k)])];
         o.add(sliverScore(*q[0], *q[1], *q[2], *q[3]), target);
         if (o.worst <= kInvalidScore) break;
+        // The worst score only falls and the shortfall only grows as tets are added.
+        if (o.worst < cannotBeat.worst || o.deficit > cannotBeat.deficit) return Objective::hopeless();
     }
     return o;
 }
@@ -51,7 +54,8 @@ std::pair<Vec3, Objective> bestPosition(const TetMeshEditor& mesh, const std::ve
         std::array<Objective, 14> trialScore;
         for (std::size_t k = 0; k < trial.size(); ++k) trial[k] = p + h * dirs[k];
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, trial.size(), 7), [&](const auto& r) {
-            for (std::size_t k = r.begin(); k != r.end(); ++k) trialScore[k] = objectiveWith(mesh.nodes(), tets, v, trial[k], target);
+            for (std::size_t k = r.begin(); k != r.end(); ++k)
+                trialScore[k] = objectiveWith(mesh.nodes(), tets, v, trial[k], target, best.hopelessBelow(trial.size()));
         });
         Objective stepBest = best;
         Vec3 stepP = p;

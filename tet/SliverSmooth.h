@@ -14,8 +14,10 @@
 namespace jawmesh {
 
 /// The objective of the tets `tets` (by nodes of `nodes`) with node v placed at p; stops at the
-/// first invalid tet.
-Objective objectiveWith(const std::vector<Vec3>& nodes, const std::vector<Tet>& tets, std::int32_t v, const Vec3& p, double target);
+/// first invalid tet, and returns Objective::hopeless() as soon as the tets so far are worse than
+/// `cannotBeat` in either part (a trial that can no longer win is not scored to the end).
+Objective objectiveWith(const std::vector<Vec3>& nodes, const std::vector<Tet>& tets, std::int32_t v, const Vec3& p, double target,
+                        const Objective& cannotBeat = Objective::hopeless());
 
 /// The objective of the editor's tets `tets` where they are.
 Objective objectiveOf(const TetMeshEditor& mesh, const std::vector<std::int32_t>& tets, double target);
