@@ -151,6 +151,71 @@ DistanceSamples sampleDistances(const SurfaceMesh& from, const TriangleBvh& to, 
     return s;
 }
 
+namespace {
+
+/// The largest distance known of a group before any refinement, and where it is.
+struct GroupBar {
+    double mm = -1.0;
+    Vec3 at = Vec3::Zero();
+};
+
+/// Every corner of a grouped triangle measured once (a vertex is shared by about six triangles),
+/// each query hinted by the nearest triangle of a sample beside it. Unmeasured vertices keep d -1.
+std::vector<Corner> measureCorners(const SurfaceMesh& from, const DistanceSamples& samples,
+                                   const std::vector<int>& groupOfTriangle, const TriangleBvh& to) {
+    std::vector<Corner> corner(from.vertices.size(), Corner{Vec3::Zero(), -1.0, -1});
+    std::vector<std::int32_t> hint(from.vertices.size(), -1);
+    for (std::size_t t = 0; t < from.triangles.size(); ++t)
+        if (groupOfTriangle[t] >= 0)
+            for (std::int32_t v : from.triangles[t])
+                hint[static_cast<std::size_t>(v)] = samples.closestTriangle[static_cast<std::size_t>(samples.firstOfTriangle[t])];
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corner.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t v = r.begin(); v != r.end(); ++v)
+            if (hint[v] >= 0) corner[v] = measure(to, from.vertices[v], hint[v]);
+    });
+    return corner;
+}
+
+/// Each group's bar: its largest sample (the first in sample order) or, when larger, its
+/// farthest corner (the first in triangle order).
+std::vector<GroupBar> groupBars(const SurfaceMesh& from, const DistanceSamples& samples, const std::vector<int>& groupOfTriangle,
+                                const std::vector<Corner>& corner, std::size_t groupCount) {
+    std::vector<GroupBar> bar(groupCount);
+    std::vector<std::size_t> barSample(groupCount, 0);
+    for (std::size_t t = 0; t < from.triangles.size(); ++t) {
+        const int g = groupOfTriangle[t];
+        if (g < 0) continue;
+        for (std::int64_t i = samples.firstOfTriangle[t]; i < samples.firstOfTriangle[t + 1]; ++i)
+            if (samples.distanceMm[static_cast<std::size_t>(i)] > bar[static_cast<std::size_t>(g)].mm) {
+                bar[static_cast<std::size_t>(g)].mm = samples.distanceMm[static_cast<std::size_t>(i)];
+                barSample[static_cast<std::size_t>(g)] = static_cast<std::size_t>(i);
+            }
+    }
+    for (std::size_t g = 0; g < groupCount; ++g) {
+        if (bar[g].mm < 0) continue;
+        const std::size_t i = barSample[g];
+        const std::size_t t = static_cast<std::size_t>(samples.sourceTriangle[i]);
+        const Tri& tri = from.triangles[t];
+        const Vec3& a = from.vertices[static_cast<std::size_t>(tri[0])];
+        const Vec3 u = from.vertices[static_cast<std::size_t>(tri[1])] - a, v = from.vertices[static_cast<std::size_t>(tri[2])] - a;
+        std::size_t index = static_cast<std::size_t>(samples.firstOfTriangle[t]);
+        const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(samples.firstOfTriangle[t + 1] - samples.firstOfTriangle[t]))));
+        forEachSamplePoint(a, u, v, n, [&](const Vec3& p) {
+            if (index++ == i) bar[g].at = p;
+        });
+    }
+    for (std::size_t t = 0; t < from.triangles.size(); ++t) {
+        const int g = groupOfTriangle[t];
+        if (g < 0) continue;
+        for (std::int32_t v : from.triangles[t])
+            if (corner[static_cast<std::size_t>(v)].d > bar[static_cast<std::size_t>(g)].mm)
+                bar[static_cast<std::size_t>(g)] = {corner[static_cast<std::size_t>(v)].d, corner[static_cast<std::size_t>(v)].p};
+    }
+    return bar;
+}
+
+}  // namespace
+
 std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const DistanceSamples& samples,
                                                 const std::vector<int>& groupOfTriangle, int groupCount,
                                                 const TriangleBvh& to, double toleranceMm, Progress& progress) {
@@ -165,25 +230,15 @@ std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const D
             weights[static_cast<std::size_t>(g)].push_back(samples.weightMm2[static_cast<std::size_t>(i)]);
         }
     }
-    // The largest sample of each group (first in sample order) is the bar a triangle must beat to
-    // be refined, and where the max is until one does.
-    std::vector<double> barOf(out.size(), -1.0);
-    std::vector<std::size_t> barSample(out.size(), 0);
-    for (std::size_t t = 0; t < nt; ++t) {
-        const int g = groupOfTriangle[t];
-        if (g < 0) continue;
-        for (std::int64_t i = samples.firstOfTriangle[t]; i < samples.firstOfTriangle[t + 1]; ++i)
-            if (samples.distanceMm[static_cast<std::size_t>(i)] > barOf[static_cast<std::size_t>(g)]) {
-                barOf[static_cast<std::size_t>(g)] = samples.distanceMm[static_cast<std::size_t>(i)];
-                barSample[static_cast<std::size_t>(g)] = static_cast<std::size_t>(i);
-            }
-    }
+    const std::vector<Corner> corner = measureCorners(from, samples, groupOfTriangle, to);
+    // The bar a triangle must beat to be refined, and where the max is until one does.
+    const std::vector<GroupBar> bar = groupBars(from, samples, groupOfTriangle, corner, out.size());
 
     // Most triangles are settled by their own samples: every point of a sub-triangle is within its
     // centroid-to-corner radius of the sample at that centroid (distance is 1-Lipschitz), so a
     // triangle whose samples plus that radius stay below the bar cannot beat it. Only the others
-    // get corner queries and the branch and bound.
-    std::vector<double> triangleMax(nt, 0.0);
+    // get the branch and bound, from their measured corners.
+    std::vector<double> triangleMax(nt, -1.0);
     std::vector<Vec3> triangleWhere(nt, Vec3::Zero());
     std::atomic<std::size_t> done{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 256), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -191,24 +246,22 @@ std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const D
         for (std::size_t t = r.begin(); t != r.end(); ++t) {
             const int g = groupOfTriangle[t];
             if (g < 0) continue;
-            const double bar = barOf[static_cast<std::size_t>(g)];
-            triangleMax[t] = bar;
+            const double groupBar = bar[static_cast<std::size_t>(g)].mm;
             const Tri& tri = from.triangles[t];
-            const Vec3& a = from.vertices[static_cast<std::size_t>(tri[0])];
-            const Vec3& b = from.vertices[static_cast<std::size_t>(tri[1])];
-            const Vec3& c = from.vertices[static_cast<std::size_t>(tri[2])];
+            const Corner& a = corner[static_cast<std::size_t>(tri[0])];
+            const Corner& b = corner[static_cast<std::size_t>(tri[1])];
+            const Corner& c = corner[static_cast<std::size_t>(tri[2])];
             const std::int64_t first = samples.firstOfTriangle[t], count = samples.firstOfTriangle[t + 1] - first;
-            const Vec3 centre = (a + b + c) / 3.0;
-            const double radius = std::sqrt(std::max({(a - centre).squaredNorm(), (b - centre).squaredNorm(), (c - centre).squaredNorm()})) /
+            const Vec3 centre = (a.p + b.p + c.p) / 3.0;
+            const double radius = std::sqrt(std::max({(a.p - centre).squaredNorm(), (b.p - centre).squaredNorm(),
+                                                      (c.p - centre).squaredNorm()})) /
                                   std::sqrt(static_cast<double>(count));  // sub-triangles are the triangle scaled by 1/n
             double worst = 0;
             for (std::int64_t i = first; i < first + count; ++i) worst = std::max(worst, samples.distanceMm[static_cast<std::size_t>(i)]);
-            if (worst + radius <= bar + toleranceMm) continue;
-            const std::int32_t hint = samples.closestTriangle[static_cast<std::size_t>(first)];
-            const Corner ka = measure(to, a, hint), kb = measure(to, b, ka.closest), kc = measure(to, c, kb.closest);
-            double best = bar;
-            refineMax(ka, kb, kc, to, toleranceMm, best, &triangleWhere[t]);
-            triangleMax[t] = best;  // == bar unless a point of this triangle beats it
+            if (worst + radius <= groupBar + toleranceMm) continue;
+            double best = groupBar;
+            refineMax(a, b, c, to, toleranceMm, best, &triangleWhere[t]);
+            if (best > groupBar) triangleMax[t] = best;
         }
         progress.update(static_cast<double>(done += r.size()) / static_cast<double>(nt));
     });
@@ -218,16 +271,8 @@ std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const D
         s.distance = summarizeWeighted(values[g], weights[g]);
         s.areaMm2 = s.distance.totalWeight;
         if (values[g].empty()) continue;
-        const std::size_t i = barSample[g];
-        const std::size_t t = static_cast<std::size_t>(samples.sourceTriangle[i]);
-        const Tri& tri = from.triangles[t];
-        const Vec3& a = from.vertices[static_cast<std::size_t>(tri[0])];
-        const Vec3 u = from.vertices[static_cast<std::size_t>(tri[1])] - a, v = from.vertices[static_cast<std::size_t>(tri[2])] - a;
-        std::size_t index = static_cast<std::size_t>(samples.firstOfTriangle[t]);
-        const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(samples.firstOfTriangle[t + 1] - samples.firstOfTriangle[t]))));
-        forEachSamplePoint(a, u, v, n, [&](const Vec3& p) {
-            if (index++ == i) s.maxAt = p;
-        });
+        s.distance.max = bar[g].mm;
+        s.maxAt = bar[g].at;
     }
     for (std::size_t t = 0; t < nt; ++t) {  // serial, lowest triangle first: a unique location
         const int g = groupOfTriangle[t];
