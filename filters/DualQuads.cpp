@@ -10,6 +10,7 @@ std::vector<DualQuad> dualQuadsOf(const std::vector<LabelEdge>& edges, const std
     std::vector<DualQuad> quads(edges.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 4096), [&](const auto& r) {
         auto acc = labels.getConstAccessor();
+        std::size_t hint[4] = {0, 0, 0, 0};  // each corner's last cell: the edges come sorted
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const LabelEdge& e = edges[i];
             const int d1 = (e.axis + 1) % 3, d2 = (e.axis + 2) % 3;
@@ -19,7 +20,7 @@ std::vector<DualQuad> dualQuadsOf(const std::vector<LabelEdge>& edges, const std
             c[1][d2] -= 1;
             c[3][d1] -= 1;
             DualQuad& q = quads[i];
-            for (int k = 0; k < 4; ++k) q.cells[std::size_t(k)] = std::int32_t(dualCellIndex(cells, c[k]));
+            for (int k = 0; k < 4; ++k) q.cells[std::size_t(k)] = std::int32_t(dualCellIndex(cells, c[k], hint[k]));
             openvdb::Coord w = e.voxel;
             w[e.axis] += 1;
             const Label la = acc.getValue(e.voxel), lb = acc.getValue(w);

@@ -193,4 +193,33 @@ std::int64_t dualCellIndex(const std::vector<openvdb::Coord>& cells, const openv
     return (it != cells.end() && *it == c) ? std::int64_t(it - cells.begin()) : -1;
 }
 
+std::int64_t dualCellIndex(const std::vector<openvdb::Coord>& cells, const openvdb::Coord& c, std::size_t& hint) {
+    // Bracket c between lo and hi (cells[lo] < c <= cells[hi], ends as -1 and n) by doubling steps
+    // from the hint, then the usual lower bound inside the bracket.
+    const std::size_t n = cells.size();
+    std::size_t lo = 0, hi = n;
+    std::size_t at = std::min(hint, n == 0 ? 0 : n - 1);
+    if (n > 0 && cells[at] < c) {
+        std::size_t step = 1;
+        lo = at;
+        while (lo + step < n && cells[lo + step] < c) {
+            lo += step;
+            step *= 2;
+        }
+        hi = std::min(n, lo + step);
+        ++lo;  // cells[lo - 1] < c
+    } else if (n > 0) {
+        std::size_t step = 1;
+        hi = at;  // c <= cells[hi]
+        while (hi >= step && !(cells[hi - step] < c)) {
+            hi -= step;
+            step *= 2;
+        }
+        lo = hi >= step ? hi - step + 1 : 0;
+    }
+    const auto it = std::lower_bound(cells.begin() + std::ptrdiff_t(lo), cells.begin() + std::ptrdiff_t(hi), c);
+    hint = std::size_t(it - cells.begin());
+    return (it != cells.end() && *it == c) ? std::int64_t(hint) : -1;
+}
+
 }  // namespace jawmesh
