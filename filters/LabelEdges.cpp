@@ -151,6 +151,49 @@ void updateLabelEdges(std::vector<LabelEdge>& edges, const openvdb::Int32Grid& l
     }
 }
 
+namespace {
+
+/// The active voxels of a mask in (x, y, z) order without a sort of the voxels: the leaves are
+/// sorted by origin (y and z before x would not do: rows of leaves interleave), then each plane
+/// x = const of a row of leaves (same origin x and y) is read leaf by leaf, one y at a time (a
+/// leaf's offset is 64 x + 8 y + z, so the bits of a plane are one word and of a row one byte).
+std::vector<openvdb::Coord> sortedVoxels(const MaskTree& mask) {
+    using Leaf = MaskTree::LeafNodeType;
+    std::vector<const Leaf*> leaves;
+    for (auto leaf = mask.cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
+    tbb::parallel_sort(leaves.begin(), leaves.end(), [](const Leaf* a, const Leaf* b) { return a->origin() < b->origin(); });
+    // rows: leaves of one origin x (a slab of 8 planes), each slab filled by one task
+    std::vector<std::size_t> slab(1, 0), start(1, 0);
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+        if (i > 0 && leaves[i]->origin().x() != leaves[i - 1]->origin().x()) slab.push_back(i);
+        start.push_back(start.back() + leaves[i]->onVoxelCount());
+    }
+    slab.push_back(leaves.size());
+    std::vector<openvdb::Coord> cells(start.back());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, slab.size() - 1), [&](const auto& r) {
+        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+            std::size_t at = start[slab[k]];
+            for (int dx = 0; dx < int(Leaf::DIM); ++dx)
+                for (std::size_t row = slab[k]; row < slab[k + 1];) {  // leaves of one origin y
+                    std::size_t end = row;
+                    while (end < slab[k + 1] && leaves[end]->origin().y() == leaves[row]->origin().y()) ++end;
+                    for (int dy = 0; dy < int(Leaf::DIM); ++dy)
+                        for (std::size_t i = row; i < end; ++i) {
+                            // word dx of the mask holds the plane, byte dy its z row
+                            const auto word = leaves[i]->getValueMask().template getWord<openvdb::Index64>(openvdb::Index(dx));
+                            unsigned zs = unsigned(word >> (8 * dy)) & 0xffu;
+                            const openvdb::Coord& o = leaves[i]->origin();
+                            for (; zs; zs &= zs - 1) cells[at++] = o.offsetBy(dx, dy, __builtin_ctz(zs));
+                        }
+                    row = end;
+                }
+        }
+    });
+    return cells;
+}
+
+}  // namespace
+
 std::vector<openvdb::Coord> dualCellsOf(const std::vector<LabelEdge>& edges) {
     // Each edge's four cells are marked in a mask (one per thread, then united: the same set
     // whatever the threads), and only the distinct cells are sorted. Sorting the four copies of
@@ -171,21 +214,7 @@ std::vector<openvdb::Coord> dualCellsOf(const std::vector<LabelEdge>& edges) {
     MaskTree all;
     for (MaskTree& m : masks) all.topologyUnion(m);
     masks.clear();
-    std::vector<const MaskTree::LeafNodeType*> leaves;
-    std::vector<std::size_t> start(1, 0);
-    for (auto leaf = all.cbeginLeaf(); leaf; ++leaf) {
-        leaves.push_back(leaf.getLeaf());
-        start.push_back(start.back() + leaf->onVoxelCount());
-    }
-    std::vector<openvdb::Coord> cells(start.back());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const auto& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            std::size_t at = start[i];
-            for (auto it = leaves[i]->cbeginValueOn(); it; ++it) cells[at++] = it.getCoord();
-        }
-    });
-    tbb::parallel_sort(cells.begin(), cells.end());
-    return cells;
+    return sortedVoxels(all);
 }
 
 std::int64_t dualCellIndex(const std::vector<openvdb::Coord>& cells, const openvdb::Coord& c) {
