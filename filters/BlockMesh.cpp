@@ -109,11 +109,15 @@ PairRule BlockMesh::ruleFor(Label a, Label b) const {
     return {bounds.boundMm(a, b, true), bounds.maxEdgeMm(a, b), bounds.boundMm(a, b, false)};
 }
 
-double BlockMesh::boundOf(std::int32_t p, std::int32_t t) const {
+double BlockMesh::fineBoundOf(std::int32_t p, std::int32_t t) const {
     const PairRule& r = rule(t);
+    return std::min(state.nearTeeth[std::size_t(p)] ? r.errorMm : r.farErrorMm, plateBound(p));
+}
+
+double BlockMesh::boundOf(std::int32_t p, std::int32_t t) const {
     const auto& S = *state.spentMm;
     const double spent = std::size_t(p) < S.size() ? double(S[std::size_t(p)]) : 0.0;
-    return std::max(0.0, std::min(state.nearTeeth[std::size_t(p)] ? r.errorMm : r.farErrorMm, plateBound(p)) - spent);
+    return std::max(0.0, fineBoundOf(p, t) - spent);
 }
 
 double BlockMesh::plateBound(std::int32_t p) const {

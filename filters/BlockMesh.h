@@ -74,7 +74,11 @@ struct BlockMesh {
         return f;
     }
     const PairRule& rule(std::int32_t t) const { return rules.at(pair[std::size_t(t)]); }
-    /// The error bound of input vertex p on triangle t's interface.
+    /// The error bound of input vertex p on triangle t's interface, as a distance from the fine
+    /// surface (of which every input vertex is a point: a fine vertex).
+    double fineBoundOf(std::int32_t p, std::int32_t t) const;
+    /// The same less the sample error the adaptive extraction spent at p (a corner): the bound of
+    /// a distance to the input triangles there, which lie that far from the fine surface.
     double boundOf(std::int32_t p, std::int32_t t) const;
     /// How far a thin plate's sheet may move at input vertex p (infinite off plates).
     double plateBound(std::int32_t p) const;

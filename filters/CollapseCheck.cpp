@@ -264,11 +264,12 @@ bool CollapseCheck::placeRemovedPoints(CollapsePlan& plan) {
     const std::int32_t gu = M.gid[std::size_t(u_)];
     for (std::int32_t t : M.vtris[std::size_t(u_)]) {
         const int key = M.pair[std::size_t(t)];
+        // the points are fine vertices: their distance is to the fine surface, nothing spent
         for (std::int32_t p : M.pts[std::size_t(t)])
-            if (!placePoint(p, key, M.boundOf(p, t), t, plan)) return false;
+            if (!placePoint(p, key, M.fineBoundOf(p, t), t, plan)) return false;
         if (std::find(pairsDone_.begin(), pairsDone_.end(), key) == pairsDone_.end()) {
             pairsDone_.push_back(key);
-            if (!placePoint(gu, key, M.boundOf(gu, t), t, plan)) return false;
+            if (!placePoint(gu, key, M.fineBoundOf(gu, t), t, plan)) return false;
         }
     }
     return true;
@@ -325,16 +326,20 @@ bool CollapseCheck::newTrianglesNearInput(const CollapsePlan& plan) {
         const auto& C = newCorners_[m];
         const Vec3 samples[4] = {(C[0] + C[1] + C[2]) / 3.0, 0.5 * (C[0] + C[1]), 0.5 * (C[1] + C[2]), 0.5 * (C[2] + C[0])};
         // near the teeth when any corner or the nearest vertex is (NearTeeth.h): the tighter bound
-        double cornerBound = std::numeric_limits<double>::infinity();
-        for (std::int32_t c : newTris_[m]) cornerBound = std::min(cornerBound, M.boundOf(M.gid[std::size_t(c)], moved_[m]));
+        Bounds corner{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+        for (std::int32_t c : newTris_[m]) corner = corner.min(boundsOf(M.gid[std::size_t(c)], moved_[m]));
         for (const Vec3& x : samples)
-            if (!sampleNearInput(x, moved_[m], cornerBound)) return false;
+            if (!sampleNearInput(x, moved_[m], corner)) return false;
     }
     return true;
 }
 
+CollapseCheck::Bounds CollapseCheck::boundsOf(std::int32_t p, std::int32_t t) const {
+    return {mesh_.fineBoundOf(p, t), mesh_.boundOf(p, t)};
+}
+
 /// Sample x of new triangle t within the bound of the input surface (newTrianglesNearInput).
-bool CollapseCheck::sampleNearInput(const Vec3& x, std::int32_t t, double cornerBound) const {
+bool CollapseCheck::sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound) const {
     const BlockMesh& M = mesh_;
     const InputSurface& in = *M.state.input;
     // p: the nearest input vertex (on the fine interface)
@@ -347,9 +352,10 @@ bool CollapseCheck::sampleNearInput(const Vec3& x, std::int32_t t, double corner
             p = i;
         }
     }
-    const double bound = std::min(M.boundOf(near_[p], t), cornerBound);
-    const double b2 = bound * bound;
-    if (d2 <= b2) return true;  // an input vertex (on the input surface) is that close
+    const Bounds bound = boundsOf(near_[p], t).min(cornerBound);
+    // an input vertex is a fine vertex, on the fine surface: its distance spends nothing
+    if (d2 <= bound.fine * bound.fine) return true;
+    const double b2 = bound.input * bound.input;
     // c: the nearest corner, whose input triangles are searched (carried vertices have none)
     std::int32_t c = -1;
     double c2 = std::numeric_limits<double>::infinity();

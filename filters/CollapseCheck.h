@@ -6,6 +6,7 @@
 #include "filters/BlockMesh.h"
 #include "filters/RegionWedges.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -48,7 +49,14 @@ private:
     bool placeRemovedPoints(CollapsePlan& plan);
     bool placePoint(std::int32_t p, int pairKey, double bound, std::int32_t from, CollapsePlan& plan) const;
     bool newTrianglesNearInput(const CollapsePlan& plan);
-    bool sampleNearInput(const Vec3& x, std::int32_t t, double cornerBound) const;
+    /// A sample's bounds: from the fine surface (to an input vertex) and from the input
+    /// triangles (the fine one less what the adaptive extraction spent there).
+    struct Bounds {
+        double fine, input;
+        Bounds min(const Bounds& o) const { return {std::min(fine, o.fine), std::min(input, o.input)}; }
+    };
+    Bounds boundsOf(std::int32_t p, std::int32_t t) const;
+    bool sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound) const;
     bool intersectionFree();
     void collectLocalTriangles();
     bool newTriangleIntersects(std::size_t m);
