@@ -51,10 +51,10 @@ struct TetOptions {
     SliverOptions slivers;
     /// Rounds of local refinement when tets under the target are left: the surface edges
     /// around them are split at their midpoints (the surface does not move) and the kept run is
-    /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h). Off by
-    /// default: the surface's error bound (SimplifyInterfaces.h) is checked at the vertices,
-    /// centroids and edge midpoints of its triangles only, so the centroids of the split halves
-    /// can lie farther from the raw surface than the bound (docs/DESIGN.md).
+    /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h). 0 here
+    /// (the surface's own points only); `run` allows 3 (cli/RunOptions.cpp, docs/DESIGN.md: the
+    /// surface does not move, but its error bound is checked at its triangles' vertices,
+    /// centroids and edge midpoints only, and the split halves' centroids are new samples).
     int refineRounds = 0;
 };
 
