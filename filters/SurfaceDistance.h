@@ -49,7 +49,8 @@ struct DistanceSummary {
 /// Per group, the distances from `from` to `to` summarised: groupOfTriangle[t] in [0, groupCount)
 /// or -1 (triangle ignored). `samples` must come from sampleDistances(from, to, ...). The max of
 /// each group is refined to within toleranceMm (> 0). Deterministic for any thread count.
-/// Throws Cancelled. Cost: O(samples) plus the refinement (a few queries per triangle near the max).
+/// Throws Cancelled. Cost: O(samples), one query per vertex of a grouped triangle (the corners the
+/// refinement starts from, which also raise each group's starting bar), plus the refinement.
 std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const DistanceSamples& samples,
                                                 const std::vector<int>& groupOfTriangle, int groupCount,
                                                 const TriangleBvh& to, double toleranceMm,
