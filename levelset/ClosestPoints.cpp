@@ -14,9 +14,8 @@ namespace jawmesh {
 namespace {
 
 using openvdb::Coord;
-using LeafMask = openvdb::util::NodeMask<3>;
-constexpr int kLeafLog2 = 3;
-constexpr int kLeafVoxels = 512;
+using MaskLeaf = openvdb::MaskTree::LeafNodeType;
+using LeafMask = MaskLeaf::NodeMaskType;
 
 /// The queue: pops offers by squared distance, ties by coordinate. Each voxel's offers have
 /// strictly falling distances, so that order is total and the pops are the same as a single binary
@@ -69,7 +68,7 @@ private:
 /// band: the grid's active voxels (their values are the grid's own unless withBand).
 struct Slab {
     Coord origin;
-    std::array<float, kLeafVoxels> offered;
+    std::array<float, MaskLeaf::SIZE> offered;
     LeafMask open, band;
 };
 
@@ -103,7 +102,10 @@ public:
     }
 
 private:
-    static Coord leafCoord(const Coord& c) { return Coord(c.x() >> kLeafLog2, c.y() >> kLeafLog2, c.z() >> kLeafLog2); }
+    static Coord leafCoord(const Coord& c) {
+        constexpr int log2 = int(MaskLeaf::LOG2DIM);
+        return Coord(c.x() >> log2, c.y() >> log2, c.z() >> log2);
+    }
     std::size_t index(const Coord& l) const {
         const Coord d = l - lo_;
         return (std::size_t(d.x()) * std::size_t(dim_.y()) + std::size_t(d.y())) * std::size_t(dim_.z()) + std::size_t(d.z());
@@ -113,7 +115,7 @@ private:
     std::vector<Slab> slabs_;
 };
 
-inline openvdb::Index offsetOf(const Coord& c) { return openvdb::MaskTree::LeafNodeType::coordToOffset(c); }
+inline openvdb::Index offsetOf(const Coord& c) { return MaskLeaf::coordToOffset(c); }
 
 /// Fills each slab's masks from the region and the grid (a leaf the grid lacks is one tile value).
 void fillSlabs(Slabs& slabs, const openvdb::MaskTree& region, const openvdb::FloatGrid& grid, float side, float outward) {
@@ -175,7 +177,9 @@ void settle(Slabs& slabs, double max2, OfferQueue& queue) {
         const openvdb::Vec3d p(it.cp);
         for (const Coord& o : nbr) {
             const Coord q = it.c + o;
-            Slab* s = (q.x() & ~7) == home->origin.x() && (q.y() & ~7) == home->origin.y() && (q.z() & ~7) == home->origin.z()
+            constexpr int kOrigin = ~int(MaskLeaf::DIM - 1);  // a voxel's leaf origin: its coordinates & this
+            Slab* s = (q.x() & kOrigin) == home->origin.x() && (q.y() & kOrigin) == home->origin.y() &&
+                              (q.z() & kOrigin) == home->origin.z()
                           ? home
                           : slabs.find(q);
             if (!s) continue;
@@ -208,11 +212,11 @@ openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, c
 
     for (const Slab& s : slabs.all()) {
         openvdb::FloatTree::LeafNodeType* leaf = nullptr;
-        for (int i = 0; i < kLeafVoxels; ++i) {
-            const float f = s.offered[std::size_t(i)];
-            if (!std::signbit(f) || (!withBand && s.band.isOn(openvdb::Index(i)))) continue;
+        for (openvdb::Index i = 0; i < MaskLeaf::SIZE; ++i) {
+            const float f = s.offered[i];
+            if (!std::signbit(f) || (!withBand && s.band.isOn(i))) continue;
             if (!leaf) leaf = out->tree().touchLeaf(s.origin);
-            leaf->setValueOn(openvdb::Index(i), float(side) * float(std::sqrt(double(-f)) * voxel));
+            leaf->setValueOn(i, float(side) * float(std::sqrt(double(-f)) * voxel));
         }
     }
     out->setGridClass(openvdb::GRID_LEVEL_SET);
