@@ -196,11 +196,12 @@ void BlockMesh::apply(std::int32_t u, std::int32_t v, const CollapsePlan& plan) 
         const Tri& f = tri[std::size_t(t)];
         if (opt.exhaustiveIntersectionChecks) grid.place(t, boxOf(pos[f[0]], pos[f[1]], pos[f[2]]));
     }
-    // Reassign the points of u's old triangles (v's untouched triangles keep theirs).
+    // Reassign the points of u's old triangles (v's untouched triangles keep theirs). A point is
+    // in one list per interface and placed once per interface, so it is never there already (a
+    // search of the list for it was quadratic in the lists, which grow to hundreds of points).
     for (std::size_t i = 0; i < plan.assign.size(); ++i) {
         const auto [p, t] = plan.assign[i];
-        auto& L = pts[std::size_t(t)];
-        if (std::find(L.begin(), L.end(), p) == L.end()) L.push_back(p);
+        pts[std::size_t(t)].push_back(p);
         state.err[std::size_t(p)] = plan.dist[i];
     }
     // u itself may be placed once per interface; its error is the largest of those.
