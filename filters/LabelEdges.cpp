@@ -153,15 +153,33 @@ void updateLabelEdges(std::vector<LabelEdge>& edges, const openvdb::Int32Grid& l
 
 namespace {
 
+using MaskLeaf = MaskTree::LeafNodeType;
+
+/// Writes the voxels of leaves [first, last) (one origin x, sorted by origin) at `out` in order.
+void writeSlab(const MaskLeaf* const* first, const MaskLeaf* const* last, openvdb::Coord* out) {
+    for (int dx = 0; dx < int(MaskLeaf::DIM); ++dx)
+        for (const MaskLeaf* const* row = first; row < last;) {  // leaves of one origin y
+            const MaskLeaf* const* end = row;
+            while (end < last && (*end)->origin().y() == (*row)->origin().y()) ++end;
+            for (int dy = 0; dy < int(MaskLeaf::DIM); ++dy)
+                for (const MaskLeaf* const* leaf = row; leaf < end; ++leaf) {
+                    // word dx of the mask holds the plane, byte dy its z row
+                    const auto word = (*leaf)->getValueMask().template getWord<openvdb::Index64>(openvdb::Index(dx));
+                    for (unsigned zs = unsigned(word >> (8 * dy)) & 0xffu; zs; zs &= zs - 1)
+                        *out++ = (*leaf)->origin().offsetBy(dx, dy, __builtin_ctz(zs));
+                }
+            row = end;
+        }
+}
+
 /// The active voxels of a mask in (x, y, z) order without a sort of the voxels: the leaves are
 /// sorted by origin (y and z before x would not do: rows of leaves interleave), then each plane
 /// x = const of a row of leaves (same origin x and y) is read leaf by leaf, one y at a time (a
 /// leaf's offset is 64 x + 8 y + z, so the bits of a plane are one word and of a row one byte).
 std::vector<openvdb::Coord> sortedVoxels(const MaskTree& mask) {
-    using Leaf = MaskTree::LeafNodeType;
-    std::vector<const Leaf*> leaves;
+    std::vector<const MaskLeaf*> leaves;
     for (auto leaf = mask.cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
-    tbb::parallel_sort(leaves.begin(), leaves.end(), [](const Leaf* a, const Leaf* b) { return a->origin() < b->origin(); });
+    tbb::parallel_sort(leaves.begin(), leaves.end(), [](const MaskLeaf* a, const MaskLeaf* b) { return a->origin() < b->origin(); });
     // rows: leaves of one origin x (a slab of 8 planes), each slab filled by one task
     std::vector<std::size_t> slab(1, 0), start(1, 0);
     for (std::size_t i = 0; i < leaves.size(); ++i) {
@@ -171,23 +189,8 @@ std::vector<openvdb::Coord> sortedVoxels(const MaskTree& mask) {
     slab.push_back(leaves.size());
     std::vector<openvdb::Coord> cells(start.back());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, slab.size() - 1), [&](const auto& r) {
-        for (std::size_t k = r.begin(); k != r.end(); ++k) {
-            std::size_t at = start[slab[k]];
-            for (int dx = 0; dx < int(Leaf::DIM); ++dx)
-                for (std::size_t row = slab[k]; row < slab[k + 1];) {  // leaves of one origin y
-                    std::size_t end = row;
-                    while (end < slab[k + 1] && leaves[end]->origin().y() == leaves[row]->origin().y()) ++end;
-                    for (int dy = 0; dy < int(Leaf::DIM); ++dy)
-                        for (std::size_t i = row; i < end; ++i) {
-                            // word dx of the mask holds the plane, byte dy its z row
-                            const auto word = leaves[i]->getValueMask().template getWord<openvdb::Index64>(openvdb::Index(dx));
-                            unsigned zs = unsigned(word >> (8 * dy)) & 0xffu;
-                            const openvdb::Coord& o = leaves[i]->origin();
-                            for (; zs; zs &= zs - 1) cells[at++] = o.offsetBy(dx, dy, __builtin_ctz(zs));
-                        }
-                    row = end;
-                }
-        }
+        for (std::size_t k = r.begin(); k != r.end(); ++k)
+            writeSlab(leaves.data() + slab[k], leaves.data() + slab[k + 1], cells.data() + start[slab[k]]);
     });
     return cells;
 }
@@ -196,8 +199,8 @@ std::vector<openvdb::Coord> sortedVoxels(const MaskTree& mask) {
 
 std::vector<openvdb::Coord> dualCellsOf(const std::vector<LabelEdge>& edges) {
     // Each edge's four cells are marked in a mask (one per thread, then united: the same set
-    // whatever the threads), and only the distinct cells are sorted. Sorting the four copies of
-    // every cell instead took 1.3 GB and about a tenth of the extraction on the shared mandible.
+    // whatever the threads), read out in order (sortedVoxels). Sorting the four copies of every
+    // cell instead took 1.3 GB and about a tenth of the extraction on the shared mandible.
     tbb::enumerable_thread_specific<MaskTree> masks;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 1 << 16), [&](const auto& r) {
         openvdb::tree::ValueAccessor<MaskTree> acc(masks.local());
@@ -215,11 +218,6 @@ std::vector<openvdb::Coord> dualCellsOf(const std::vector<LabelEdge>& edges) {
     for (MaskTree& m : masks) all.topologyUnion(m);
     masks.clear();
     return sortedVoxels(all);
-}
-
-std::int64_t dualCellIndex(const std::vector<openvdb::Coord>& cells, const openvdb::Coord& c) {
-    const auto it = std::lower_bound(cells.begin(), cells.end(), c);
-    return (it != cells.end() && *it == c) ? std::int64_t(it - cells.begin()) : -1;
 }
 
 std::int64_t dualCellIndex(const std::vector<openvdb::Coord>& cells, const openvdb::Coord& c, std::size_t& hint) {

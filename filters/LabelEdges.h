@@ -40,12 +40,10 @@ void updateLabelEdges(std::vector<LabelEdge>& edges, const openvdb::Int32Grid& l
 /// for edge (v, axis) these are v - a e1 - b e2 for a, b in {0, 1}, e1, e2 the other two axes.
 std::vector<openvdb::Coord> dualCellsOf(const std::vector<LabelEdge>& edges);
 
-/// Index of cell c in the sorted array cells (from dualCellsOf), or -1.
-std::int64_t dualCellIndex(const std::vector<openvdb::Coord>& cells, const openvdb::Coord& c);
-
-/// The same, searched outward from position `hint` (any index, e.g. the answer for the previous of
-/// a sequence of nearby cells), then updated to where c is or would be: O(log distance) instead
-/// of O(log n) for look-ups in sorted order (the quads of the sorted edges).
+/// Index of cell c in the sorted array cells (from dualCellsOf), or -1, searched outward from
+/// position `hint` (any index, e.g. the answer for the previous of a sequence of nearby cells),
+/// then updated to where c is or would be: O(log distance) instead of O(log n) for look-ups in
+/// sorted order (the quads of the sorted edges).
 std::int64_t dualCellIndex(const std::vector<openvdb::Coord>& cells, const openvdb::Coord& c, std::size_t& hint);
 
 /// Corner k (0..7, bit 0 = +x, bit 1 = +y, bit 2 = +z) of the dual cell with lowest corner c.

@@ -65,9 +65,12 @@ private:
 /// One leaf of the region. offered: the smallest squared distance offered so far (voxels^2,
 /// +max when none); once the voxel is settled, minus the distance it took (so the sign bit says
 /// settled, -0 included). open: region voxels on the propagating side, which may take offers.
-/// band: the grid's active voxels (their values are the grid's own unless withBand).
+/// band: the grid's active voxels (their values are the grid's own unless withBand). region and
+/// grid: the leaves at the origin (grid null where the grid has a tile).
 struct Slab {
     Coord origin;
+    const MaskLeaf* region = nullptr;
+    const openvdb::FloatTree::LeafNodeType* grid = nullptr;
     std::array<float, MaskLeaf::SIZE> offered;
     LeafMask open, band;
 };
@@ -90,6 +93,7 @@ public:
             table_[index(leafCoord(leaf->origin()))] = std::int32_t(slabs_.size());
             slabs_.emplace_back();
             slabs_.back().origin = leaf->origin();
+            slabs_.back().region = leaf.getLeaf();
         }
     }
     std::vector<Slab>& all() { return slabs_; }
@@ -117,20 +121,19 @@ private:
 
 inline openvdb::Index offsetOf(const Coord& c) { return MaskLeaf::coordToOffset(c); }
 
-/// Fills each slab's masks from the region and the grid (a leaf the grid lacks is one tile value).
-void fillSlabs(Slabs& slabs, const openvdb::MaskTree& region, const openvdb::FloatGrid& grid, float side, float outward) {
+/// Fills each slab's masks from its region leaf and the grid (a leaf the grid lacks is one tile value).
+void fillSlabs(Slabs& slabs, const openvdb::FloatGrid& grid, float side, float outward) {
     auto ga = grid.getConstAccessor();
     for (Slab& s : slabs.all()) {
         s.offered.fill(std::numeric_limits<float>::max());
-        const auto* rl = region.probeConstLeaf(s.origin);
-        const auto* gl = grid.tree().probeConstLeaf(s.origin);
-        const float tile = gl ? 0.0f : ga.getValue(s.origin);
-        if (gl)
-            s.band = gl->getValueMask();
+        s.grid = grid.tree().probeConstLeaf(s.origin);
+        const float tile = s.grid ? 0.0f : ga.getValue(s.origin);
+        if (s.grid)
+            s.band = s.grid->getValueMask();
         else if (ga.isValueOn(s.origin))
             s.band.setOn();
-        for (auto v = rl->getValueMask().beginOn(); v; ++v) {
-            const float g = gl ? gl->getValue(v.pos()) : tile;
+        for (auto v = s.region->getValueMask().beginOn(); v; ++v) {
+            const float g = s.grid ? s.grid->getValue(v.pos()) : tile;
             if (side * g > outward) s.open.setOn(v.pos());
         }
     }
@@ -141,9 +144,8 @@ void seed(Slabs& slabs, const openvdb::FloatGrid& grid, double voxel, double see
           OfferQueue& queue) {
     auto ga = grid.getConstAccessor();
     for (Slab& s : slabs.all()) {
-        const auto* gl = grid.tree().probeConstLeaf(s.origin);
-        if (!gl) continue;
-        for (auto v = gl->cbeginValueOn(); v; ++v) {
+        if (!s.grid) continue;
+        for (auto v = s.grid->cbeginValueOn(); v; ++v) {
             const double d = *v;
             if (side * d > seedHighMm || side * d < seedLowMm) continue;
             const Coord c = v.getCoord();
@@ -205,7 +207,7 @@ openvdb::FloatGrid::Ptr propagateClosestPoints(const openvdb::FloatGrid& grid, c
     if (!(maxDistanceMm > 0)) return out;
 
     Slabs slabs(region);
-    fillSlabs(slabs, region, grid, float(side), float(std::max(seedLowMm, 0.0)));
+    fillSlabs(slabs, grid, float(side), float(std::max(seedLowMm, 0.0)));
     OfferQueue queue(max2);
     seed(slabs, grid, voxel, seedLowMm, seedHighMm, side, queue);
     settle(slabs, max2, queue);
