@@ -39,6 +39,20 @@ bool pairIntersects(const Vec3* P, const Tri& ip, const BBox& box, const Vec3* Q
     return trianglesIntersect(P, ip, Q, iq);
 }
 
+/// Where a new triangle is checked against the input: its centroid, its edge midpoints, and the
+/// centroids of the halves a split of an edge at its midpoint makes (SplitCorners.h splits some,
+/// and the tet stage's probes and faces then sit there), weights (1/2, 1/3, 1/6) in every order.
+std::array<Vec3, 10> samplesOf(const std::array<Vec3, 3>& C) {
+    std::array<Vec3, 10> s;
+    s[0] = (C[0] + C[1] + C[2]) / 3.0;
+    int k = 1;
+    for (int i = 0; i < 3; ++i) s[std::size_t(k++)] = 0.5 * (C[std::size_t(i)] + C[std::size_t((i + 1) % 3)]);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (j != i) s[std::size_t(k++)] = C[std::size_t(i)] / 2.0 + C[std::size_t(j)] / 3.0 + C[std::size_t(3 - i - j)] / 6.0;
+    return s;
+}
+
 }  // namespace
 
 bool CollapseCheck::plan(std::int32_t u, std::int32_t v, CollapsePlan& plan) {
@@ -307,65 +321,72 @@ bool CollapseCheck::placePoint(std::int32_t p, int pairKey, double bound, std::i
 
 /// The other direction of the error bound: every new triangle stays within the bound of the
 /// input surface (a triangle can float over a dip whose input points all chose a neighbouring
-/// triangle). Checked at its centroid and edge midpoints (where a flat triangle over a curved
-/// surface is farthest from it), against the input triangles around the nearest input vertex
-/// of the collapse (its removed points and the new triangles' corners), then their
-/// neighbours': a distance to part of the input surface, so never an underestimate.
+/// triangle). Checked at samplesOf's ten points (the centroid and edge midpoints, where a flat
+/// triangle over a curved surface is farthest from it, and the halves' centroids) against the
+/// input triangles around the nearest of the triangle's input vertices (its corners and the
+/// removed points it takes; failing that, of all the collapse's), then their neighbours': a
+/// distance to part of the input surface, so never an underestimate.
 bool CollapseCheck::newTrianglesNearInput(const CollapsePlan& plan) {
     const BlockMesh& M = mesh_;
-    near_.clear();
-    for (const auto& pt : plan.assign) near_.push_back(pt.first);
-    for (const Tri& f : newTris_)
-        for (std::int32_t x : f) near_.push_back(M.gid[std::size_t(x)]);
-    std::sort(near_.begin(), near_.end());
-    near_.erase(std::unique(near_.begin(), near_.end()), near_.end());
-    // positions side by side: every sample scans them all
-    nearPos_.clear();
-    for (std::int32_t q : near_) nearPos_.push_back(M.points[std::size_t(q)]);
+    allNear_.clear();
     for (std::size_t m = 0; m < moved_.size(); ++m) {
-        const auto& C = newCorners_[m];
-        const Vec3 samples[4] = {(C[0] + C[1] + C[2]) / 3.0, 0.5 * (C[0] + C[1]), 0.5 * (C[1] + C[2]), 0.5 * (C[2] + C[0])};
+        ownNear_.clear();
+        for (std::int32_t x : newTris_[m]) ownNear_.add(M.gid[std::size_t(x)], M.points);
+        for (const auto& pt : plan.assign)
+            if (pt.second == moved_[m]) ownNear_.add(pt.first, M.points);
         // near the teeth when any corner or the nearest vertex is (NearTeeth.h): the tighter bound
         Bounds corner{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
         for (std::int32_t c : newTris_[m]) corner = corner.min(boundsOf(M.gid[std::size_t(c)], moved_[m]));
-        for (const Vec3& x : samples)
-            if (!sampleNearInput(x, moved_[m], corner)) return false;
+        for (const Vec3& x : samplesOf(newCorners_[m])) {
+            if (sampleNearInput(x, moved_[m], corner, ownNear_)) continue;
+            if (allNear_.ids.empty()) collectCollapseVertices(plan);
+            if (!sampleNearInput(x, moved_[m], corner, allNear_)) return false;
+        }
     }
     return true;
+}
+
+/// allNear_: every input vertex of the collapse (its removed points, the new triangles' corners), once each.
+void CollapseCheck::collectCollapseVertices(const CollapsePlan& plan) {
+    const BlockMesh& M = mesh_;
+    collapseIds_.clear();
+    for (const auto& pt : plan.assign) collapseIds_.push_back(pt.first);
+    for (const Tri& f : newTris_)
+        for (std::int32_t x : f) collapseIds_.push_back(M.gid[std::size_t(x)]);
+    std::sort(collapseIds_.begin(), collapseIds_.end());
+    collapseIds_.erase(std::unique(collapseIds_.begin(), collapseIds_.end()), collapseIds_.end());
+    for (std::int32_t q : collapseIds_) allNear_.add(q, M.points);
 }
 
 CollapseCheck::Bounds CollapseCheck::boundsOf(std::int32_t p, std::int32_t t) const {
     return {mesh_.fineBoundOf(p, t), mesh_.boundOf(p, t)};
 }
 
-/// Sample x of new triangle t within the bound of the input surface (newTrianglesNearInput).
-bool CollapseCheck::sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound) const {
+/// Sample x of new triangle t within the bound of the input surface, measured from the input
+/// vertices `near` (newTrianglesNearInput).
+bool CollapseCheck::sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound, const NearVertices& near) const {
     const BlockMesh& M = mesh_;
     const InputSurface& in = *M.state.input;
-    // p: the nearest input vertex (on the fine interface)
+    // p: the nearest input vertex (on the fine interface); c: the nearest corner, whose input
+    // triangles are searched (carried vertices have none)
     std::size_t p = 0;
-    double d2 = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < nearPos_.size(); ++i) {
-        const double e = (nearPos_[i] - x).squaredNorm();
+    std::int32_t c = -1;
+    double d2 = std::numeric_limits<double>::infinity(), c2 = d2;
+    for (std::size_t i = 0; i < near.pos.size(); ++i) {
+        const double e = (near.pos[i] - x).squaredNorm();
         if (e < d2) {
             d2 = e;
             p = i;
         }
+        if (e < c2 && in.around.count(near.ids[i]) > 0) {
+            c2 = e;
+            c = near.ids[i];
+        }
     }
-    const Bounds bound = boundsOf(near_[p], t).min(cornerBound);
+    const Bounds bound = boundsOf(near.ids[p], t).min(cornerBound);
     // an input vertex is a fine vertex, on the fine surface: its distance spends nothing
     if (d2 <= bound.fine * bound.fine) return true;
     const double b2 = bound.input * bound.input;
-    // c: the nearest corner, whose input triangles are searched (carried vertices have none)
-    std::int32_t c = -1;
-    double c2 = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < nearPos_.size(); ++i) {
-        const double e = (nearPos_[i] - x).squaredNorm();
-        if (e < c2 && in.around.count(near_[i]) > 0) {
-            c2 = e;
-            c = near_[i];
-        }
-    }
     const auto within = [&](std::int32_t s) {
         const Tri& f = (*in.tris)[std::size_t(s)];
         return squaredDistanceToTriangle(x, M.points[std::size_t(f[0])], M.points[std::size_t(f[1])],

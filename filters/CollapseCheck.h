@@ -56,7 +56,22 @@ private:
         Bounds min(const Bounds& o) const { return {std::min(fine, o.fine), std::min(input, o.input)}; }
     };
     Bounds boundsOf(std::int32_t p, std::int32_t t) const;
-    bool sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound) const;
+    /// Input vertices a sample is measured from, and their positions side by side (every sample
+    /// scans them all).
+    struct NearVertices {
+        std::vector<std::int32_t> ids;
+        std::vector<Vec3> pos;
+        void clear() {
+            ids.clear();
+            pos.clear();
+        }
+        void add(std::int32_t q, const std::vector<Vec3>& points) {
+            ids.push_back(q);
+            pos.push_back(points[std::size_t(q)]);
+        }
+    };
+    bool sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound, const NearVertices& near) const;
+    void collectCollapseVertices(const CollapsePlan& plan);
     bool intersectionFree();
     void collectLocalTriangles();
     bool newTriangleIntersects(std::size_t m);
@@ -77,8 +92,8 @@ private:
     // scratch buffers
     std::vector<int> pairsDone_;
     std::vector<std::int32_t> localTris_;
-    std::vector<std::int32_t> near_;    ///< newTrianglesNearInput's input vertices
-    std::vector<Vec3> nearPos_;         ///< and their positions
+    NearVertices ownNear_, allNear_;    ///< newTrianglesNearInput's: of one new triangle, of the collapse
+    std::vector<std::int32_t> collapseIds_;
     std::vector<EdgeFanTriangle> wedgeFan_;
 };
 

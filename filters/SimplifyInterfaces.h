@@ -15,7 +15,8 @@
 //    quarter of the plate's thickness at most) of the output triangles of that
 //    interface, and every removed curve vertex within the bound of its curve (tracked exactly;
 //    the reported maximum is this one-sided Hausdorff distance from the input vertices to the
-//    output); the other way, the centroid and edge midpoints of every new triangle stay within
+//    output); the other way, the centroid, edge midpoints and the centroids of the halves an edge
+//    split makes (SplitCorners.h) of every new triangle stay within
 //    the bound of the input surface (distance to the input triangles around the nearest input
 //    vertex of the collapse, an upper bound of the true distance).
 //  - quality: no new triangle has an angle below minAngleDeg unless it replaces a triangle that
