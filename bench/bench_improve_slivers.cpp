@@ -16,7 +16,7 @@
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: bench_improve_slivers <mesh.msh> [target-deg] [max-passes] [lookahead-depth]\n");
+        std::fprintf(stderr, "usage: bench_improve_slivers <mesh.msh> [target-deg] [max-passes] [lookahead-depth] [deep-lookahead-trials] [interface-push-mm]\n");
         return 2;
     }
     jawmesh::TetMesh mesh = jawmesh::readGmsh(argv[1]);
@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
     if (argc > 2) o.targetMinDihedralDeg = std::stod(argv[2]);
     if (argc > 3) o.maxPasses = std::stoi(argv[3]);
     if (argc > 4) o.lookaheadDepth = std::stoi(argv[4]);
+    if (argc > 5) o.deepLookaheadTrials = std::size_t(std::stoul(argv[5]));
+    if (argc > 6) o.interfacePushMm = std::stod(argv[6]);
     const jawmesh::ValidationReport before = jawmesh::validateTetMesh(mesh, {});
     const auto volumesBefore = jawmesh::labelVolumesMm3(mesh);  // the improver must keep them
     jawmesh::SliverStats s;

@@ -255,13 +255,14 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
             }
             bad = badTets(imp);
         }
-        // Deeper lookaheads for the last few, each depth within its count of trials.
+        // The deep lookahead for the last few, within its count of trials. Straight at its depth:
+        // the levels between cost more trials than they mend (SliverOptions::deepLookaheadDepth).
         PhaseProgress deeper(stage, progress, 0.9, 1.0);
-        if (options.lookaheadDepth > 0 && bad.size() <= options.deepLookaheadTets)
-            for (int depth = options.lookaheadDepth + 1; depth <= options.deepLookaheadDepth && !bad.empty(); ++depth) {
-                imp.trialLimit = imp.trialsMade + options.deepLookaheadTrials;
-                deepen(depth, depth, deeper);
-            }
+        if (options.lookaheadDepth > 0 && options.deepLookaheadDepth > options.lookaheadDepth &&
+            bad.size() <= options.deepLookaheadTets) {
+            imp.trialLimit = imp.trialsMade + options.deepLookaheadTrials;
+            deepen(options.deepLookaheadDepth, options.deepLookaheadDepth, deeper);
+        }
         editor.finish();
         // Every operation re-triangulates a cavity of one region (or splits an interface in
         // place; pushes move it by what they recorded): a region whose volume changed otherwise

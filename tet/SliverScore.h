@@ -16,6 +16,15 @@ namespace jawmesh {
 
 constexpr double kInvalidScore = -3.0;  ///< below every cosine-based score: an inverted or flat tet
 
+/// The score below from a tet's four face normals n (all outward or all inward) and their
+/// lengths len (> 0).
+inline double scoreOfFaceNormals(const Vec3 (&n)[4], const double (&len)[4]) {
+    double worstCos = -1.0;  // cosine of the interior dihedral angle = -cos(angle of outward normals)
+    for (int k = 0; k < 4; ++k)
+        for (int l = k + 1; l < 4; ++l) worstCos = std::max(worstCos, -n[k].dot(n[l]) / (len[k] * len[l]));
+    return -worstCos;
+}
+
 /// Score of a tet: minus the cosine of its smallest interior dihedral angle (monotone in that
 /// angle, cheaper than the angle itself); kInvalidScore when not positively oriented.
 inline double sliverScore(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -27,10 +36,7 @@ inline double sliverScore(const Vec3& a, const Vec3& b, const Vec3& c, const Vec
         len[k] = n[k].norm();
         if (!(len[k] > 0)) return kInvalidScore;
     }
-    double worstCos = -1.0;  // cosine of the interior dihedral angle = -cos(angle of outward normals)
-    for (int k = 0; k < 4; ++k)
-        for (int l = k + 1; l < 4; ++l) worstCos = std::max(worstCos, -n[k].dot(n[l]) / (len[k] * len[l]));
-    return -worstCos;
+    return scoreOfFaceNormals(n, len);
 }
 
 /// The smallest dihedral angle, degrees, of a tet of score s (0 for an invalid tet).

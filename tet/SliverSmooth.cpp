@@ -4,24 +4,75 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 
 namespace jawmesh {
 
-Objective objectiveWith(const std::vector<Vec3>& nodes, const std::vector<Tet>& tets, std::int32_t v, const Vec3& p, double target,
-                        const Objective& cannotBeat) {
-    Objective o;
+MovingStar movingStar(const std::vector<Vec3>& nodes, const std::vector<Tet>& tets, std::int32_t v) {
+    MovingStar star;
+    star.tets.reserve(tets.size());
     for (const Tet& e : tets) {
-        const Vec3* q[4];
-        for (int k = 0; k < 4; ++k) q[k] = e[std::size_t(k)] == v ? &p : &nodes[std::size_t(e[std::size_t(k)])];
-        o.add(sliverScore(*q[0], *q[1], *q[2], *q[3]), target);
+        MovingStar::Corners c;
+        const auto at = std::find(e.begin(), e.end(), v);
+        c.moves = at != e.end();
+        if (!c.moves) {
+            c.fixedScore = sliverScore(nodes[std::size_t(e[0])], nodes[std::size_t(e[1])], nodes[std::size_t(e[2])],
+                                       nodes[std::size_t(e[3])]);
+            star.tets.push_back(c);
+            continue;
+        }
+        // moving the node to the front takes k swaps of neighbours, each flipping the orientation
+        const std::ptrdiff_t k = at - e.begin();
+        std::array<std::int32_t, 3> rest{};
+        for (std::ptrdiff_t i = 0, j = 0; i < 4; ++i)
+            if (i != k) rest[std::size_t(j++)] = e[std::size_t(i)];
+        c.a = nodes[std::size_t(rest[0])];
+        c.b = nodes[std::size_t(rest[1])];
+        c.c = nodes[std::size_t(rest[2])];
+        c.opposite = (c.b - c.a).cross(c.c - c.a);
+        c.oppositeLength = c.opposite.norm();
+        c.sign = k % 2 == 0 ? 1.0 : -1.0;
+        star.tets.push_back(c);
+    }
+    return star;
+}
+
+namespace {
+
+/// sliverScore of the tet (p, a, b, c) of a moving star (p the node), the orientation taken
+/// from c.sign: the face normals all point out, or all in, so their angles are the same.
+double movingScore(const MovingStar::Corners& c, const Vec3& p) {
+    if (!c.moves) return c.fixedScore;
+    const Vec3 pa = c.a - p, pb = c.b - p, pc = c.c - p;
+    if (!(c.sign * pa.dot(c.opposite) > 0) || !(c.oppositeLength > 0)) return kInvalidScore;
+    const Vec3 n[4] = {c.opposite, pc.cross(pb), pa.cross(pc), pb.cross(pa)};
+    double len[4] = {c.oppositeLength, 0, 0, 0};
+    for (int k = 1; k < 4; ++k) {
+        len[k] = n[k].norm();
+        if (!(len[k] > 0)) return kInvalidScore;
+    }
+    return scoreOfFaceNormals(n, len);
+}
+
+}  // namespace
+
+Objective objectiveWith(const MovingStar& star, const Vec3& p, double target, const Objective& cannotBeat) {
+    Objective o;
+    for (const MovingStar::Corners& c : star.tets) {
+        o.add(movingScore(c, p), target);
         if (o.worst <= kInvalidScore) break;
         // The worst score only falls and the shortfall only grows as tets are added.
         if (o.worst < cannotBeat.worst || o.deficit > cannotBeat.deficit) return Objective::hopeless();
     }
     return o;
+}
+
+Objective objectiveWith(const std::vector<Vec3>& nodes, const std::vector<Tet>& tets, std::int32_t v, const Vec3& p, double target,
+                        const Objective& cannotBeat) {
+    return objectiveWith(movingStar(nodes, tets, v), p, target, cannotBeat);
 }
 
 Objective objectiveOf(const TetMeshEditor& mesh, const std::vector<std::int32_t>& tets, double target) {
@@ -32,7 +83,8 @@ Objective objectiveOf(const TetMeshEditor& mesh, const std::vector<std::int32_t>
 
 std::pair<Vec3, Objective> bestPosition(const TetMeshEditor& mesh, const std::vector<Tet>& tets, std::int32_t v, Vec3 start,
                                         double target) {
-    Objective best = objectiveWith(mesh.nodes(), tets, v, start, target);
+    const MovingStar star = movingStar(mesh.nodes(), tets, v);
+    Objective best = objectiveWith(star, start, target);
     double shortest = std::numeric_limits<double>::infinity();
     for (const Tet& e : tets)
         for (auto w : e)
@@ -55,7 +107,7 @@ std::pair<Vec3, Objective> bestPosition(const TetMeshEditor& mesh, const std::ve
         for (std::size_t k = 0; k < trial.size(); ++k) trial[k] = p + h * dirs[k];
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, trial.size(), 7), [&](const auto& r) {
             for (std::size_t k = r.begin(); k != r.end(); ++k)
-                trialScore[k] = objectiveWith(mesh.nodes(), tets, v, trial[k], target, best.hopelessBelow(trial.size()));
+                trialScore[k] = objectiveWith(star, trial[k], target, best.hopelessBelow(trial.size()));
         });
         Objective stepBest = best;
         Vec3 stepP = p;
