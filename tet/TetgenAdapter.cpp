@@ -173,12 +173,14 @@ TetgenMesh runTetgen(const InterfaceComplex& plc, const TetgenRun& run) {
     return raw;
 }
 
-TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, std::uint64_t& childPeakBytes) {
+TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, std::uint64_t& childPeakBytes,
+                            bool* couldNotStart) {
     ForkedResult r;
     try {
         // TetGen is serial: the child needs no thread pool.
         r = runForked([&](ParentPipe& pipe) { sendMesh(pipe, runTetgen(plc, run)); });
     } catch (const Error& e) {
+        if (couldNotStart) *couldNotStart = true;
         throw Error(kTetStageName, "TetGen: " + e.reason());
     }
     childPeakBytes = std::max(childPeakBytes, r.exit.peakMemoryBytes);

@@ -54,7 +54,9 @@ TetgenMesh runTetgen(const InterfaceComplex& plc, const TetgenRun& run);
 /// in its facet recovery, seen on a locally refined mandible surface) where it should throw, and
 /// an abort must not take the run down. The mesh comes back through a pipe; childPeakBytes is
 /// raised to the child's peak resident memory. Throws what runTetgen throws, and Error when the
-/// child dies or fails.
-TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, std::uint64_t& childPeakBytes);
+/// child dies or fails; then *couldNotStart (when given) says whether the child was never started
+/// (no pipe or no fork: out of processes or memory), TetGen not run at all.
+TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, std::uint64_t& childPeakBytes,
+                            bool* couldNotStart = nullptr);
 
 }  // namespace jawmesh

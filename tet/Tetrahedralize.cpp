@@ -12,6 +12,7 @@
 #include "tet/RefineComplex.h"
 #include "tet/RepairHoles.h"
 #include "tet/TetgenAdapter.h"
+#include "tet/TetgenGroups.h"
 #include "tet/TetStageName.h"
 
 #include <algorithm>
@@ -184,7 +185,7 @@ bool attempt(Ladder& l, const InterfaceComplex& complex, std::size_t r, bool onl
     const TetOptions& o = l.options;
     ++l.stats.attempts;
     const TetgenRun run{tetgenSwitches(o, kLadder[r]), kLadder[r].optMaxDihedralDeg, seedVolumeBounds(complex, o)};
-    TetgenMesh raw = isolated ? runTetgenInChild(complex, run, l.stats.childPeakMemoryBytes) : runTetgen(complex, run);
+    TetgenMesh raw = runTetgenInGroups(complex, run, o.preserveBoundary, isolated, l.stats.childPeakMemoryBytes);
     if (o.preserveBoundary) labelFromSides(complex, raw);
     const std::size_t removed = keepLabeled(raw.mesh);
     if (raw.mesh.tets.empty()) throw Error(kTetStageName, "no tetrahedron received a label: are the seeds inside their regions?");
@@ -283,7 +284,7 @@ nlohmann::json toJson(const TetStats& stats) {
             {"failed_attempts", stats.failedAttempts},
             {"refine_rounds", stats.refineRounds},
             {"refined_edges", stats.refinedEdges},
-            {"refinement_child_peak_memory_bytes", stats.childPeakMemoryBytes},
+            {"child_peak_memory_bytes", stats.childPeakMemoryBytes},
             {"seconds", stats.seconds},
             {"sliver_improvement", toJson(stats.slivers)}};
 }

@@ -53,8 +53,8 @@ struct TetOptions {
     /// around them are split at their midpoints (the surface does not move) and the kept run is
     /// repeated on the refined complex, while that leaves fewer (tet/RefineComplex.h). 0 here
     /// (the surface's own points only); `run` allows 3 (cli/RunOptions.cpp, docs/DESIGN.md: the
-    /// surface does not move, but its error bound is checked at its triangles' vertices,
-    /// centroids and edge midpoints only, and the split halves' centroids are new samples).
+    /// surface does not move, and the simplifier checks the centroids of a split's halves, but
+    /// not those of a second split's quarters).
     int refineRounds = 0;
 };
 
@@ -75,8 +75,9 @@ struct TetStats {
     std::vector<std::string> failedAttempts; ///< repair runs that failed (switches: reason); the kept run stands
     int refineRounds = 0;               ///< refinement rounds kept (TetOptions::refineRounds)
     std::size_t refinedEdges = 0;       ///< surface edges split by them
-    /// Peak resident memory of the child processes the refinement rounds ran TetGen in (not part
-    /// of this process's peak), bytes.
+    /// Peak resident memory of the child processes TetGen ran in (one group of regions,
+    /// tet/TetgenGroups.h; the refinement rounds), bytes: not part of this process's peak, but
+    /// alongside it while they run.
     std::uint64_t childPeakMemoryBytes = 0;
     /// Holes the input complex had and the patches that closed them before TetGen ran
     /// (filters/FillSurfaceHoles.h); inputVertices / inputTriangles count the complex as given.
@@ -84,7 +85,7 @@ struct TetStats {
 };
 
 /// As run.json's "tetgen" records it: switches, attempts, failed_attempts, refine_rounds,
-/// refined_edges, refinement_child_peak_memory_bytes, seconds, hole_repair and sliver_improvement.
+/// refined_edges, child_peak_memory_bytes, seconds, hole_repair and sliver_improvement.
 nlohmann::json toJson(const TetStats& stats);
 
 /// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.
