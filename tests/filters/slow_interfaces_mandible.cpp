@@ -1,10 +1,11 @@
-// Issue #4 on the shared mandible: the interface surface of a finished `jawmesh run` (read back
+// Issue #4 on the shared mandible (and maxilla): the interface surface of a finished `jawmesh run` (read back
 // from its tet mesh: with TetGen's -Y its interface faces are the simplified surface TetGen was
 // given) against the raw extraction of the run's own label field (<run>/levelsets, written with
 // --write-levelsets): no self-intersections (exact predicates), every region closed, every region's
 // topology (Euler characteristic, components) as in the label field, each interface within its
 // error bound of the raw extraction in both directions, <= 350 k triangles, >= 3 across the cap.
-// Run by `bash quickstart.sh mandible-test` (JAWMESH_MANDIBLE_RUN=<out>/mandible); skipped otherwise.
+// Run by `bash quickstart.sh mandible-test` (JAWMESH_MANDIBLE_RUN=<out>/mandible,
+// JAWMESH_MAXILLA_RUN=<out>/maxilla); skipped otherwise.
 #include "cli/RunOptions.h"
 #include "filters/ExtractInterfaces.h"
 #include "filters/NearTeeth.h"
@@ -50,12 +51,14 @@ struct Worst {
     double excessMm = -1;  ///< largest distance minus its bound
     double distanceMm = 0;
     Vec3 at = Vec3::Zero();
+    bool atVertex = true;  ///< a vertex of the probe, or a triangle's centroid
 };
 
 /// Points to measure from, each with whether it counts as near the teeth (verticesNearTeeth).
 struct Probe {
     std::vector<Vec3> points;
     std::vector<char> near;
+    std::size_t vertexCount = 0;  ///< points before it are vertices, after it centroids
 };
 
 /// The vertices of `tris`, each once.
@@ -69,6 +72,7 @@ Probe verticesOf(const InterfaceComplex& c, const std::vector<Tri>& tris, const 
         p.points.push_back(c.surface.vertices[std::size_t(v)]);
         p.near.push_back(near[std::size_t(v)]);
     }
+    p.vertexCount = p.points.size();
     return p;
 }
 
@@ -97,27 +101,28 @@ Worst worstPoint(const Probe& probe, const TriangleBvh& bvh, const Pair& p, cons
     Worst w;
     for (std::size_t i = 0; i < d.size(); ++i) {
         const double excess = d[i] - boundFor(p, probe.near[i] != 0, o);
-        if (excess > w.excessMm) w = {excess, d[i], probe.points[i]};
+        if (excess > w.excessMm) w = {excess, d[i], probe.points[i], i < probe.vertexCount};
     }
     return w;
 }
 
-TEST(SlowInterfaces, MandibleSurfaceIsIntersectionFreeClosedOfTheLabelTopologyAndWithinTheBound) {
-    const char* run = std::getenv("JAWMESH_MANDIBLE_RUN");
-    if (!run) GTEST_SKIP() << "set JAWMESH_MANDIBLE_RUN=<out>/mandible (a run of the shared mandible with --write-levelsets)";
-    const fs::path dir(run);
-    if (!fs::exists(dir / "levelsets" / "labels.vdb"))
-        GTEST_SKIP() << dir.string() << " has no levelsets/: run it with --write-levelsets";
+/// Every check of the interface surface of the run in `dir` (a jaw's output folder).
+void checkRunInterfaces(const fs::path& dir) {
 
+    // the jaw and its tooth count from the run's record: a maxilla run is checked the same way
     RunOptions options = defaultRunOptions();
+    std::string jaw;
+    std::size_t teethIn = 0;
     {
         std::ifstream in(dir / "run.json");
         const auto record = nlohmann::json::parse(in);
         applyRunConfigText(record.at("options").dump(), (dir / "run.json").string(), options);
+        jaw = record.at("jaw").get<std::string>();
+        teethIn = record.at("input").at("teeth").get<std::size_t>();
     }
     const SimplifyOptions& so = options.simplify;
 
-    const InterfaceComplex coarse = meshInterfaces(readGmsh((dir / "volumetric_meshes" / "mandible.msh").string()));
+    const InterfaceComplex coarse = meshInterfaces(readGmsh((dir / "volumetric_meshes" / (jaw + ".msh")).string()));
     InterfaceComplex raw;
     {
         const LabelField field = readLabelField((dir / "levelsets").string());
@@ -154,8 +159,8 @@ TEST(SlowInterfaces, MandibleSurfaceIsIntersectionFreeClosedOfTheLabelTopologyAn
                     after.first, after.second, before.first, before.second);
         EXPECT_EQ(after, before) << labelName(L) << " (Euler characteristic, components)";
     }
-    EXPECT_EQ(teeth, 14u);
-    EXPECT_EQ(pdls, 14u);
+    EXPECT_EQ(teeth, teethIn);
+    EXPECT_EQ(pdls, teethIn);
 
     // within the bound of the raw extraction both ways: every raw vertex from the meshed triangles
     // of its own interface (the simplifier's guarantee), every meshed vertex and triangle centroid
@@ -183,7 +188,7 @@ TEST(SlowInterfaces, MandibleSurfaceIsIntersectionFreeClosedOfTheLabelTopologyAn
                     a.distanceMm, b.distanceMm, own.distanceMm, boundFor(p, false, so));
         EXPECT_LE(a.excessMm, 1e-9) << name << ": raw point " << a.distanceMm << " mm from the meshed surface at ("
                                     << a.at.x() << ", " << a.at.y() << ", " << a.at.z() << ")";
-        EXPECT_LE(b.excessMm, 1e-9) << name << ": meshed point " << b.distanceMm << " mm from the raw surface at ("
+        EXPECT_LE(b.excessMm, 1e-9) << name << ": meshed " << (b.atVertex ? "vertex " : "centroid ") << b.distanceMm << " mm from the raw surface at ("
                                     << b.at.x() << ", " << b.at.y() << ", " << b.at.z() << ")";
     }
     std::printf("largest distance raw -> meshed %.4f mm, meshed -> raw %.4f mm (to its own interface %.4f mm)\n", worstRaw,
@@ -212,6 +217,29 @@ TEST(SlowInterfaces, MandibleSurfaceIsIntersectionFreeClosedOfTheLabelTopologyAn
                 rawCap.back(), shareAbove(coarseCap, 0.2 / 3), shareAbove(rawCap, 0.2 / 3));
     EXPECT_LE(coarseCap.back(), std::max(so.capMaxEdgeMm, rawCap.back()) + 1e-9);
     EXPECT_LE(so.capMaxEdgeMm, 0.2 / 3);
+}
+
+/// The run named by environment variable `var` (a run with --write-levelsets), else a skip reason.
+std::string runDirFrom(const char* var, fs::path& dir) {
+    const char* run = std::getenv(var);
+    if (!run) return std::string("set ") + var + "=<out>/<jaw> (a run of the shared jaw with --write-levelsets)";
+    dir = run;
+    if (!fs::exists(dir / "levelsets" / "labels.vdb")) return dir.string() + " has no levelsets/: run it with --write-levelsets";
+    return "";
+}
+
+TEST(SlowInterfaces, MandibleSurfaceIsIntersectionFreeClosedOfTheLabelTopologyAndWithinTheBound) {
+    fs::path dir;
+    const std::string skip = runDirFrom("JAWMESH_MANDIBLE_RUN", dir);
+    if (!skip.empty()) GTEST_SKIP() << skip;
+    checkRunInterfaces(dir);
+}
+
+TEST(SlowInterfaces, MaxillaSurfaceIsIntersectionFreeClosedOfTheLabelTopologyAndWithinTheBound) {
+    fs::path dir;
+    const std::string skip = runDirFrom("JAWMESH_MAXILLA_RUN", dir);
+    if (!skip.empty()) GTEST_SKIP() << skip;
+    checkRunInterfaces(dir);
 }
 
 }  // namespace
