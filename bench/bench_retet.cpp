@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const jawmesh::ValidationReport r = jawmesh::validateTetMesh(out, {});
     std::map<std::string, std::size_t> perKind;
-    for (jawmesh::Label l : out.labels) perKind[jawmesh::labelKind(l) == jawmesh::LabelKind::Bone ? "bone" : jawmesh::labelKind(l) == jawmesh::LabelKind::Tooth ? "tooth" : "pdl"]++;
+    for (jawmesh::Label l : out.labels) perKind[jawmesh::labelKind(l) == jawmesh::LabelKind::Bone ? "bone" : jawmesh::isToothLike(jawmesh::labelKind(l)) ? "tooth" : "pdl"]++;
     std::printf("| %s | %zu nodes, %zu tets (bone %zu, tooth %zu, pdl %zu) | min dihedral %.2f deg, %zu below %.0f (TetGen %zu) | "
                 "%s, %d attempts, %d refinement rounds (%zu edges split) | %.0f s | violations %zu |\n",
                 argv[1], out.nodes.size(), out.tets.size(), perKind["bone"], perKind["tooth"], perKind["pdl"], s.minDihedralDeg,

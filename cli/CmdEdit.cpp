@@ -51,7 +51,7 @@ void addEditCommand(CLI::App& app, GlobalOptions& global) {
     auto* cmd = app.add_subcommand(
         "edit",
         "Clinical what-ifs on a carved jaw: extraction (empty or healed socket), horizontal bone loss, an angular "
-        "defect, a tooth's PDL thickness. Reads a level-set folder written by `run --write-levelsets` or `carve` (<out>/<jaw>/levelsets), "
+        "defect, a tooth's PDL thickness, an implant in place of a tooth. Reads a level-set folder written by `run --write-levelsets` or `carve` (<out>/<jaw>/levelsets), "
         "applies the edit file's edits in order to its input level sets, carves again and writes a level-set folder "
         "for `run <case> --from-vdb`");
     cmd->add_option("levelsets", opt->levelSetsDir, "Level-set folder (with its input/ subfolder)")

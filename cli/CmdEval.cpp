@@ -37,7 +37,7 @@ Jaw jawOfMesh(const TetMesh& mesh, const std::string& path) {
     for (Label l : mesh.labels)
         if (l == kMandibleBoneLabel || l == kMaxillaBoneLabel) return l == kMandibleBoneLabel ? Jaw::Mandible : Jaw::Maxilla;
     for (Label l : mesh.labels)
-        if (labelKind(l) == LabelKind::Tooth) return jawOfTooth(labelUnn(l));
+        if (isToothLike(labelKind(l))) return jawOfTooth(labelUnn(l));
     throw Error(path, "cannot tell the jaw of this mesh (no bone or tooth label); pass --jaw");
 }
 

@@ -129,7 +129,7 @@ void judgeAgainstEdits(const nlohmann::json& history, EvalOptions& options, std:
     for (const auto& record : history)
         for (const auto& e : record.at("applied")) {
             const std::string op = e.at("op");
-            if (op == "extract") {
+            if (op == "extract" || op == "implant") {  // no input surface of that tooth is left
                 const int unn = e.at("tooth").get<int>();
                 removedTeeth.push_back(unn);
                 options.toothPdlTargetMm.erase(unn);

@@ -68,7 +68,7 @@ private:
 std::vector<int> teethInField(const LabelField& field) {
     std::vector<int> unns;
     for (const auto& [label, grid] : field.distances)
-        if (labelKind(label) == LabelKind::Tooth) unns.push_back(labelUnn(label));
+        if (isToothLike(labelKind(label))) unns.push_back(labelUnn(label));
     return unns;
 }
 

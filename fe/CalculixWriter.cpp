@@ -52,7 +52,7 @@ void writeCalculixDeck(const TetMesh& mesh, const FeScenario& s, const MaterialT
     if (s.contact) {
         exterior = exteriorFaces(mesh);
         for (const ExteriorFace& f : exterior)
-            if (labelKind(f.label) == LabelKind::Tooth) crowns[jawOfTooth(labelUnn(f.label))].push_back(&f);
+            if (isToothLike(labelKind(f.label))) crowns[jawOfTooth(labelUnn(f.label))].push_back(&f);
         if (crowns.size() != 2) throw Error(path, "the " + s.name + " scenario needs the crowns of both jaws for contact");
     }
     std::vector<char> used(nodes.size(), 0);
@@ -107,8 +107,8 @@ void writeCalculixDeck(const TetMesh& mesh, const FeScenario& s, const MaterialT
             out << "*NSET, NSET=" << kCalculixLoadPointsSet << "\n";
             writeIdList(out, loadPoints);
         }
-        for (LabelKind kind : {LabelKind::Bone, LabelKind::Tooth, LabelKind::Pdl}) {
-            const Material& m = kind == LabelKind::Bone ? materials.bone : kind == LabelKind::Tooth ? materials.tooth : materials.pdl;
+        for (LabelKind kind : {LabelKind::Bone, LabelKind::Tooth, LabelKind::Pdl, LabelKind::Implant}) {
+            const Material& m = materialOf(materials, kind);
             out << "*MATERIAL, NAME=" << materialName(kind) << "\n*DENSITY\n" << m.densityTonnePerMm3 << "\n"
                 << "*HYPERELASTIC, NEO HOOKE\n" << neoHookeC10(m) << ", " << neoHookeD1(m) << "\n";
         }

@@ -65,7 +65,7 @@ double gapAlong(const std::vector<Vec3>& nodes, const std::vector<Tri>& from, co
 double biteGapMm(const TetMesh& mesh, const std::vector<ExteriorFace>& exterior, const Vec3& up) {
     std::vector<Tri> lower, upper;
     for (const ExteriorFace& f : exterior)
-        if (labelKind(f.label) == LabelKind::Tooth) (jawOfTooth(labelUnn(f.label)) == Jaw::Mandible ? lower : upper).push_back(f.nodes);
+        if (isToothLike(labelKind(f.label))) (jawOfTooth(labelUnn(f.label)) == Jaw::Mandible ? lower : upper).push_back(f.nodes);
     const Vec3 d = up.normalized();
     return std::min(gapAlong(mesh.nodes, lower, upper, d), gapAlong(mesh.nodes, upper, lower, -d));
 }

@@ -19,7 +19,7 @@ std::map<int, ToothAxes> axesForMesh(const TetMesh& mesh, const std::map<int, To
         std::map<int, SurfaceMesh> teeth;
         bool missing = false;
         for (const auto& [label, surface] : surfaces)
-            if (labelKind(label) == LabelKind::Tooth && jawOfTooth(labelUnn(label)) == jaw) {
+            if (isToothLike(labelKind(label)) && jawOfTooth(labelUnn(label)) == jaw) {
                 teeth[labelUnn(label)] = surface;
                 missing |= !given.count(labelUnn(label));
             }

@@ -52,7 +52,7 @@ void writeFebioDeck(const TetMesh& mesh, const FeScenario& s, const MaterialTabl
     std::map<Jaw, std::vector<Tri>> crowns;
     if (s.contact)
         for (const ExteriorFace& f : exteriorFaces(mesh))
-            if (labelKind(f.label) == LabelKind::Tooth) crowns[jawOfTooth(labelUnn(f.label))].push_back(f.nodes);
+            if (isToothLike(labelKind(f.label))) crowns[jawOfTooth(labelUnn(f.label))].push_back(f.nodes);
 
     writeFileAtomically(path, [&](std::ostream& out) {
         out.precision(15);
@@ -73,7 +73,7 @@ void writeFebioDeck(const TetMesh& mesh, const FeScenario& s, const MaterialTabl
         for (LabelKind kind : kinds) {
             const int id = static_cast<int>(materialId.size()) + 1;
             materialId[kind] = id;
-            const Material& m = kind == LabelKind::Bone ? materials.bone : kind == LabelKind::Tooth ? materials.tooth : materials.pdl;
+            const Material& m = materialOf(materials, kind);
             out << "\t\t<material id=\"" << id << "\" name=\"" << materialName(kind) << "\" type=\"neo-Hookean\">\n"
                 << "\t\t\t<density>" << m.densityTonnePerMm3 << "</density>\n\t\t\t<E>" << m.youngMpa << "</E>\n"
                 << "\t\t\t<v>" << m.poisson << "</v>\n\t\t</material>\n";

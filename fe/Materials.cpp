@@ -7,13 +7,19 @@
 
 namespace jawmesh {
 
-const Material& materialOf(const MaterialTable& table, Label label) {
-    switch (labelKind(label)) {
+const Material& materialOf(const MaterialTable& table, LabelKind kind) {
+    switch (kind) {
     case LabelKind::Bone: return table.bone;
     case LabelKind::Tooth: return table.tooth;
     case LabelKind::Pdl: return table.pdl;
-    default: throw Error("no material for label " + std::to_string(label));
+    case LabelKind::Implant: return table.implant;
+    default: throw Error("no material for the outside");
     }
+}
+
+const Material& materialOf(const MaterialTable& table, Label label) {
+    if (label == kOutsideLabel) throw Error("no material for label " + std::to_string(label));
+    return materialOf(table, labelKind(label));
 }
 
 std::string materialName(LabelKind kind) {
@@ -21,6 +27,7 @@ std::string materialName(LabelKind kind) {
     case LabelKind::Bone: return "bone";
     case LabelKind::Tooth: return "tooth";
     case LabelKind::Pdl: return "pdl";
+    case LabelKind::Implant: return "implant";
     default: throw Error("no material for the outside");
     }
 }
@@ -30,10 +37,11 @@ double neoHookeC10(const Material& m) { return m.youngMpa / (4.0 * (1.0 + m.pois
 double neoHookeD1(const Material& m) { return 6.0 * (1.0 - 2.0 * m.poisson) / m.youngMpa; }
 
 void applyMaterialOverrides(const nlohmann::json& overrides, MaterialTable& table, const std::string& source) {
-    if (!overrides.is_object()) throw Error(source, "materials must be an object keyed by bone | tooth | pdl");
+    if (!overrides.is_object()) throw Error(source, "materials must be an object keyed by bone | tooth | pdl | implant");
     for (const auto& [kind, values] : overrides.items()) {
-        Material* m = kind == "bone" ? &table.bone : kind == "tooth" ? &table.tooth : kind == "pdl" ? &table.pdl : nullptr;
-        if (!m) throw Error(source, "unknown material '" + kind + "' (expected bone, tooth or pdl)");
+        Material* m = kind == "bone" ? &table.bone : kind == "tooth" ? &table.tooth : kind == "pdl" ? &table.pdl
+                    : kind == "implant" ? &table.implant : nullptr;
+        if (!m) throw Error(source, "unknown material '" + kind + "' (expected bone, tooth, pdl or implant)");
         if (!values.is_object()) throw Error(source, "material '" + kind + "' must be an object with E, nu, rho");
         Material next = *m;
         for (const auto& [key, v] : values.items()) {
@@ -57,7 +65,7 @@ nlohmann::json materialsToJson(const MaterialTable& table) {
     auto one = [](const Material& m) {
         return nlohmann::json{{"E", m.youngMpa}, {"nu", m.poisson}, {"rho", m.densityTonnePerMm3}};
     };
-    return {{"bone", one(table.bone)}, {"tooth", one(table.tooth)}, {"pdl", one(table.pdl)}};
+    return {{"bone", one(table.bone)}, {"tooth", one(table.tooth)}, {"pdl", one(table.pdl)}, {"implant", one(table.implant)}};
 }
 
 }  // namespace jawmesh

@@ -108,7 +108,8 @@ nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& ru
 
     // Per tooth, its largest displacement over its corner nodes (node numbers = index + 1 in the
     // deck), absolute and relative to its socket: the mean displacement of the nodes its PDL shares
-    // with the bone. The relative one is how far the tooth moves in its bone (what the PDL allows);
+    // with the bone (an implant's: the nodes it shares with the bone). The relative one is how far
+    // the tooth moves in its bone (what the PDL allows);
     // the absolute one adds whatever the bone itself bends under the load.
     std::map<int, double> toothMax, toothInSocketMax;
     std::map<int, Vec3> socketMean;
@@ -119,7 +120,7 @@ nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& ru
                 for (std::int32_t v : mesh->tets[t]) onBone[std::size_t(v)] = 1;
         std::map<int, std::set<std::int32_t>> socketNodes;
         for (std::size_t t = 0; t < mesh->tets.size(); ++t)
-            if (labelKind(mesh->labels[t]) == LabelKind::Pdl)
+            if (labelKind(mesh->labels[t]) == LabelKind::Pdl || labelKind(mesh->labels[t]) == LabelKind::Implant)
                 for (std::int32_t v : mesh->tets[t])
                     if (onBone[std::size_t(v)] && frd.count(v + 1)) socketNodes[labelUnn(mesh->labels[t])].insert(v);
         for (const auto& [unn, nodes] : socketNodes) {
@@ -128,7 +129,7 @@ nlohmann::json calculixSummary(const FeScenario& scenario, const CalculixRun& ru
             socketMean[unn] = sum / double(nodes.size());
         }
         for (std::size_t t = 0; t < mesh->tets.size(); ++t) {
-            if (labelKind(mesh->labels[t]) != LabelKind::Tooth) continue;
+            if (!isToothLike(labelKind(mesh->labels[t]))) continue;
             const int unn = labelUnn(mesh->labels[t]);
             double& m = toothMax[unn];
             const auto mean = socketMean.find(unn);

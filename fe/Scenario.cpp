@@ -73,9 +73,9 @@ FeScenario tippingScenario(const TetMesh& mesh, const std::map<int, ToothAxes>& 
     const std::vector<Label> bones = bonesIn(mesh);
     if (bones.empty()) throw Error("tipping scenario: the mesh has no bone region to fix");
     const std::vector<ExteriorFace> exterior = exteriorFaces(mesh);
-    std::set<int> teethInMesh;
+    std::map<int, Label> teethInMesh;  // UNN -> its tooth's or implant's label
     for (Label l : mesh.labels)
-        if (labelKind(l) == LabelKind::Tooth) teethInMesh.insert(labelUnn(l));
+        if (isToothLike(labelKind(l))) teethInMesh[labelUnn(l)] = l;
 
     for (Label bone : bones) {
         const Jaw jaw = jawOfBone(bone);
@@ -93,14 +93,13 @@ FeScenario tippingScenario(const TetMesh& mesh, const std::map<int, ToothAxes>& 
         s.fixed.push_back(std::move(base));
     }
 
-    for (int unn : teethInMesh) {
+    for (const auto& [unn, label] : teethInMesh) {
         const auto it = axes.find(unn);
         if (it == axes.end()) {
             s.notes.push_back("tooth " + std::to_string(unn) + ": no axes, not loaded");
             continue;
         }
         const ToothAxes& a = it->second;
-        const Label label = toothLabel(unn);
         std::vector<const ExteriorFace*> labialFaces;
         for (const ExteriorFace& f : exterior)
             if (f.label == label && triangleNormal(mesh.nodes, f.nodes).dot(a.labial) > 0) labialFaces.push_back(&f);

@@ -95,7 +95,7 @@ openvdb::BoolGrid::Ptr blocksNearTeeth(const std::vector<DualQuad>& quads, const
     auto acc = near->getAccessor();
     for (const DualQuad& q : quads) {
         const auto toothOrPdl = [](Label l) {
-            return l != kOutsideLabel && (labelKind(l) == LabelKind::Tooth || labelKind(l) == LabelKind::Pdl);
+            return l != kOutsideLabel && (isToothLike(labelKind(l)) || labelKind(l) == LabelKind::Pdl);
         };
         if (!toothOrPdl(q.sides[0]) && !toothOrPdl(q.sides[1])) continue;
         for (std::int32_t c : q.cells) acc.setValueOn(blockOf(cells[std::size_t(c)], level), true);

@@ -48,7 +48,7 @@ private:
         const auto has = [&](LabelKind k) { return ka == k || kb == k; };
         if (has(LabelKind::Pdl) && has(LabelKind::Outside)) return Kind::Cap;
         if (has(LabelKind::Pdl)) return Kind::Pdl;
-        if (has(LabelKind::Tooth)) return Kind::Tooth;
+        if (has(LabelKind::Tooth) || has(LabelKind::Implant)) return Kind::Tooth;
         return Kind::Bone;
     }
 };

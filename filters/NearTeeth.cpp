@@ -15,7 +15,7 @@ bool touchesTooth(const std::array<Label, 2>& sides) {
     for (Label l : sides) {
         if (l == kOutsideLabel) continue;
         const LabelKind k = labelKind(l);
-        if (k == LabelKind::Tooth || k == LabelKind::Pdl) return true;
+        if (isToothLike(k) || k == LabelKind::Pdl) return true;
     }
     return false;
 }

@@ -182,7 +182,8 @@ std::vector<Fix> proposeFixes(const openvdb::Int32Grid& labels,
 int labelConnectPriority(Label label) {
     switch (labelKind(label)) {
         case LabelKind::Pdl: return 3;
-        case LabelKind::Tooth: return 2;
+        case LabelKind::Tooth:
+        case LabelKind::Implant: return 2;
         case LabelKind::Bone: return 1;
         case LabelKind::Outside: return 0;
     }

@@ -114,6 +114,42 @@ Edit readPdlThickness(Entry& e) {
     return x;
 }
 
+/// Implant sizes, mm: narrow (mini) to wide molar implants, short to long.
+constexpr double kMinImplantDiameterMm = 1.5, kMaxImplantDiameterMm = 8.0;
+constexpr double kMinImplantLengthMm = 3.0, kMaxImplantLengthMm = 20.0;
+constexpr double kMaxPlatformDepthMm = 5.0;
+
+std::string bodyName(ImplantEdit::Body body) { return body == ImplantEdit::Body::Screw ? "screw" : "cylinder"; }
+
+Edit readImplant(Entry& e) {
+    ImplantEdit x;
+    x.tooth = e.tooth(e.key("tooth"));
+    x.diameterMm = e.number("diameter_mm", kMinImplantDiameterMm, kMaxImplantDiameterMm);
+    x.lengthMm = e.number("length_mm", kMinImplantLengthMm, kMaxImplantLengthMm);
+    if (e.json.contains("platform_depth_mm")) {
+        const auto& v = e.key("platform_depth_mm");
+        if (!v.is_number() || v.get<double>() < 0 || v.get<double>() > kMaxPlatformDepthMm)
+            e.fail("'platform_depth_mm' must be a number from 0 to " + std::to_string(int(kMaxPlatformDepthMm)));
+        x.platformDepthMm = v.get<double>();
+    }
+    if (e.json.contains("body")) {
+        const auto& b = e.key("body");
+        if (b != "cylinder" && b != "screw") e.fail("'body' must be \"cylinder\" or \"screw\"");
+        x.body = b == "screw" ? ImplantEdit::Body::Screw : ImplantEdit::Body::Cylinder;
+    }
+    if (x.body == ImplantEdit::Body::Screw) {
+        if (e.json.contains("thread_depth_mm")) x.threadDepthMm = e.number("thread_depth_mm", 0, x.diameterMm / 6);
+        if (e.json.contains("thread_pitch_mm")) x.threadPitchMm = e.number("thread_pitch_mm", 0.2, 3.0);
+        if (x.threadDepthMm > x.diameterMm / 6) e.fail("the thread is deeper than a third of the radius");
+    }
+    if (e.json.contains("crown")) {
+        const auto& c = e.key("crown");
+        if (c != "tooth" && c != "none") e.fail("'crown' must be \"tooth\" (the natural crown on the implant) or \"none\"");
+        x.crown = c == "tooth";
+    }
+    return x;
+}
+
 /// The UNNs an edit names.
 std::vector<int> teethOf(const Edit& edit) {
     return std::visit(
@@ -144,7 +180,7 @@ EditList parseEdits(const nlohmann::json& document, const std::string& name) {
     for (const auto& [k, v] : document.items())
         if (k != "edits") throw Error(name, "unknown key '" + k + "' (an edit file holds only \"edits\")");
     EditList list{name, {}};
-    std::set<int> extracted;
+    std::set<int> extracted, implanted;
     const auto& edits = document.at("edits");
     for (std::size_t i = 0; i < edits.size(); ++i) {
         const auto& j = edits[i];
@@ -156,11 +192,15 @@ EditList parseEdits(const nlohmann::json& document, const std::string& name) {
         if (op == "extract") edit = readExtract(e);
         else if (op == "bone_loss") edit = readBoneLoss(e);
         else if (op == "pdl_thickness") edit = readPdlThickness(e);
-        else e.fail("unknown op (extract, bone_loss, pdl_thickness)");
+        else if (op == "implant") edit = readImplant(e);
+        else e.fail("unknown op (extract, bone_loss, pdl_thickness, implant)");
         e.requireAllUsed();
-        for (int unn : teethOf(edit))
+        for (int unn : teethOf(edit)) {
             if (extracted.count(unn)) e.fail("tooth " + std::to_string(unn) + " was extracted by an earlier edit");
+            if (implanted.count(unn)) e.fail("tooth " + std::to_string(unn) + " was replaced by an implant by an earlier edit");
+        }
         if (const auto* x = std::get_if<ExtractEdit>(&edit)) extracted.insert(x->tooth);
+        if (const auto* x = std::get_if<ImplantEdit>(&edit)) implanted.insert(x->tooth);
         list.edits.push_back(std::move(edit));
     }
     return list;
@@ -192,6 +232,25 @@ std::vector<int> extractedTeeth(const EditList& edits) {
     return out;
 }
 
+std::vector<int> implantedTeeth(const EditList& edits) {
+    std::vector<int> out;
+    for (const Edit& edit : edits.edits)
+        if (const auto* x = std::get_if<ImplantEdit>(&edit)) out.push_back(x->tooth);
+    return out;
+}
+
+nlohmann::json toJson(const ImplantEdit& e) {
+    nlohmann::json j = {{"op", "implant"},          {"tooth", e.tooth},
+                        {"diameter_mm", e.diameterMm}, {"length_mm", e.lengthMm},
+                        {"platform_depth_mm", e.platformDepthMm}, {"body", bodyName(e.body)},
+                        {"crown", e.crown ? "tooth" : "none"}};
+    if (e.body == ImplantEdit::Body::Screw) {
+        j["thread_depth_mm"] = e.threadDepthMm;
+        j["thread_pitch_mm"] = e.threadPitchMm;
+    }
+    return j;
+}
+
 nlohmann::json toJson(const EditList& edits) {
     nlohmann::json list = nlohmann::json::array();
     for (const Edit& edit : edits.edits)
@@ -208,6 +267,8 @@ nlohmann::json toJson(const EditList& edits) {
                                     {"side", sideName(e.side)},
                                     {"depth_mm", e.depthMm},
                                     {"width_mm", e.widthMm}});
+                else if constexpr (std::is_same_v<T, ImplantEdit>)
+                    list.push_back(toJson(e));
                 else
                     list.push_back({{"op", "pdl_thickness"},
                                     {"tooth", e.tooth},

@@ -13,7 +13,7 @@ namespace jawmesh {
 void nameSegmentsByLabel(std::vector<LabelSegment>& segments, Jaw jaw) {
     for (LabelSegment& s : segments) {
         const LabelKind kind = labelKind(s.value);
-        s.name = kind == LabelKind::Bone ? jawName(jaw) : (kind == LabelKind::Tooth ? "tooth_" : "pdl_") + std::to_string(labelUnn(s.value));
+        s.name = kind == LabelKind::Bone ? jawName(jaw) : labelName(s.value);
     }
 }
 

@@ -7,6 +7,7 @@ namespace jawmesh {
 namespace {
 constexpr Label kToothBase = 100;
 constexpr Label kPdlBase = 200;
+constexpr Label kImplantBase = 300;
 
 void requireUnn(int unn) {
     if (!isValidUnn(unn)) throw Error("invalid tooth number " + std::to_string(unn) + " (UNN must be 1..32)");
@@ -25,11 +26,17 @@ Label pdlLabel(int unn) {
     return kPdlBase + unn;
 }
 
+Label implantLabel(int unn) {
+    requireUnn(unn);
+    return kImplantBase + unn;
+}
+
 LabelKind labelKind(Label label) {
     if (label == kOutsideLabel) return LabelKind::Outside;
     if (label == kMandibleBoneLabel || label == kMaxillaBoneLabel) return LabelKind::Bone;
     if (isValidUnn(label - kToothBase)) return LabelKind::Tooth;
     if (isValidUnn(label - kPdlBase)) return LabelKind::Pdl;
+    if (isValidUnn(label - kImplantBase)) return LabelKind::Implant;
     throw Error("unknown region label " + std::to_string(label));
 }
 
@@ -37,7 +44,8 @@ int labelUnn(Label label) {
     switch (labelKind(label)) {
     case LabelKind::Tooth: return label - kToothBase;
     case LabelKind::Pdl: return label - kPdlBase;
-    default: throw Error("label " + std::to_string(label) + " is not a tooth or PDL label");
+    case LabelKind::Implant: return label - kImplantBase;
+    default: throw Error("label " + std::to_string(label) + " is not a tooth, PDL or implant label");
     }
 }
 
@@ -47,6 +55,7 @@ std::string labelName(Label label) {
     case LabelKind::Bone: return label == kMandibleBoneLabel ? "bone_mandible" : "bone_maxilla";
     case LabelKind::Tooth: return "tooth_" + std::to_string(labelUnn(label));
     case LabelKind::Pdl: return "pdl_" + std::to_string(labelUnn(label));
+    case LabelKind::Implant: return "implant_" + std::to_string(labelUnn(label));
     }
     return {};
 }

@@ -30,6 +30,11 @@ nlohmann::ordered_json labelsJson(const std::vector<Label>& labels) {
             e["kind"] = "pdl";
             e["tooth"] = labelUnn(l);
             break;
+        case LabelKind::Implant:
+            e["kind"] = "implant";
+            e["tooth"] = labelUnn(l);
+            e["material"] = "titanium";
+            break;
         }
         e["name"] = labelName(l);
         entries[std::to_string(l)] = e;

@@ -185,6 +185,7 @@ std::array<std::uint8_t, 3> labelColour(Label label) {
     switch (labelKind(label)) {
     case LabelKind::Bone: return {222, 196, 140};
     case LabelKind::Pdl: return {214, 48, 48};
+    case LabelKind::Implant: return {140, 140, 150};  // titanium grey
     case LabelKind::Tooth: {
         static const std::array<std::uint8_t, 3> shades[] = {{150, 190, 240}, {95, 140, 215}, {185, 215, 250}, {120, 165, 230}};
         return shades[labelUnn(label) % 4];

@@ -63,8 +63,10 @@ Local evalLocal(const ToothWork& t, const CarveRules& rules, FloatAcc& T, FloatA
         const double dot = (bKnown && lT > 1e-3 * rules.voxel && lB > 1e-3 * rules.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
         gap = std::max(gap, (dot + rules.facingCos) * rules.gapBridge);
         // A bridged gap wider than w + boneShiftMax: the PDL moves out to meet the bone where it
-        // has moved boneShiftMax, eroding the root less (and, past that, the PDL thickens).
-        if (gap < 0 && g - w > rules.boneShiftMax) {
+        // has moved boneShiftMax, eroding the root less (and, past that, the PDL thickens). An
+        // implant has no PDL: its gaps become bone, its overlaps are its own.
+        if (t.implant) {
+        } else if (gap < 0 && g - w > rules.boneShiftMax) {
             w = g - rules.boneShiftMax;
             e = std::max(0.0, th - w);
         }
@@ -133,6 +135,7 @@ void validate(const CarveOptions& o, const FloatGrid& bone, const std::map<int, 
     }
     for (const auto& [unn, grid] : teeth) {
         toothLabel(unn);
+        if (o.implants.count(unn)) implantLabel(unn);
         if (!grid) throw Error("carve: tooth " + std::to_string(unn) + " has no grid");
         requireSameTransform(bone, *grid, "carve");
         bandHalfWidthMm(*grid);
@@ -191,6 +194,11 @@ CarveRules rulesOf(const CarveOptions& options, const FloatGrid& bone) {
 void setOwnPdl(ToothWork& t, const CarveRules& rules, const CarveOptions& options) {
     t.profile = rules.profile;
     t.uniformThickness = rules.uniformThickness;
+    if (t.implant) {  // fused: no erosion, no widening, gaps bridged into bone
+        t.profile.reset();
+        t.uniformThickness = 0;
+        return;
+    }
     if (const auto own = options.toothPdl.find(t.unn); own != options.toothPdl.end()) {
         const PdlProfile& p = own->second;
         const bool uniform = p.cervical == p.midRoot && p.apical == p.midRoot;
@@ -228,7 +236,8 @@ void prepareTeeth(CarveContext& ctx, const std::map<int, FloatGrid::ConstPtr>& t
     for (std::size_t i = 0; i < in.size(); ++i) {
         ToothWork& t = ctx.teeth[i];
         t.unn = in[i].first;
-        t.toothL = toothLabel(t.unn);
+        t.implant = ctx.options.implants.count(t.unn) > 0;
+        t.toothL = t.implant ? implantLabel(t.unn) : toothLabel(t.unn);
         t.pdlL = pdlLabel(t.unn);
         setOwnPdl(t, rules, ctx.options);
         boxes.push_back(in[i].second->evalActiveVoxelBoundingBox());
@@ -351,7 +360,7 @@ bool dropForClearance(const CarveContext& ctx, Accessors& acc, const openvdb::In
             for (int dz = -1; dz <= 1; ++dz) {
                 const Coord q = p.offsetBy(dx, dy, dz);
                 const Label m = la.getValue(q);
-                if (m == ctx.boneL && l == teeth[a].toothL) touchesBone = true;
+                if (m == ctx.boneL && l == teeth[a].toothL && !teeth[a].implant) touchesBone = true;
                 const auto other = ownerOf.find(m);
                 if (other == ownerOf.end() || other->second == a) continue;
                 const int b = other->second;
@@ -441,7 +450,7 @@ void toothAndPdlDistances(CarveContext& ctx, int k) {
     pdlGrid->setName(labelName(t.pdlL));
     pdlGrid->setGridClass(openvdb::GRID_LEVEL_SET);
     ctx.field.distances[t.toothL] = toothGrid;
-    ctx.field.distances[t.pdlL] = pdlGrid;
+    if (!t.implant) ctx.field.distances[t.pdlL] = pdlGrid;
 }
 
 /// Phase 5. Distance grids of every tooth and PDL, and the bone's.
@@ -462,8 +471,9 @@ void measureTeeth(CarveContext& ctx) {
         ctx.progress.checkCancelled();
         ToothCarveSummary s;
         s.unn = t.unn;
+        s.implant = t.implant;
         measureTooth(ctx.field, t.unn, ctx.options.capExclusionMm, s);
-        if (s.pdlVolumeMm3 <= 0)
+        if (s.pdlVolumeMm3 <= 0 && !s.implant)
             summary.warnings.push_back("tooth " + std::to_string(t.unn) + " has no bone contact: no PDL");
         else if (s.impacted)
             summary.warnings.push_back("tooth " + std::to_string(t.unn) + " is fully inside bone: closed PDL envelope");
@@ -541,6 +551,7 @@ nlohmann::json toJson(const CarveOptions& o) {
     };
     if (o.profile) j["pdl_profile_mm"] = profileJson(*o.profile);
     for (const auto& [unn, p] : o.toothPdl) j["tooth_pdl_mm"][std::to_string(unn)] = profileJson(p);
+    if (!o.implants.empty()) j["implants"] = o.implants;
     return j;
 }
 
@@ -563,6 +574,7 @@ CarveOptions carveOptionsFromJson(const nlohmann::json& j, const std::string& na
         if (j.contains("pdl_profile_mm")) o.profile = profileOf(j.at("pdl_profile_mm"));
         if (j.contains("tooth_pdl_mm"))
             for (const auto& [unn, p] : j.at("tooth_pdl_mm").items()) o.toothPdl[std::stoi(unn)] = profileOf(p);
+        if (j.contains("implants")) o.implants = j.at("implants").get<std::set<int>>();
         return o;
     } catch (const std::exception& e) {
         throw Error(name, std::string("carve options: ") + e.what());
@@ -577,6 +589,7 @@ nlohmann::json toJson(const CarveSummary& s) {
                          {"pdl_volume_mm3", t.pdlVolumeMm3},
                          {"root_area_fraction", t.rootAreaFraction},
                          {"impacted", t.impacted},
+                         {"implant", t.implant},
                          {"thickness_mm",
                           {{"samples", t.thickness.samples},
                            {"min", t.thickness.min},
@@ -595,7 +608,7 @@ nlohmann::json toJson(const CarveSummary& s) {
 
 void requireBoneContact(const CarveSummary& summary, const JawCase& jawCase, const CarveOptions& options) {
     for (const ToothCarveSummary& t : summary.teeth)
-        if (t.pdlVolumeMm3 <= 0) {
+        if (t.pdlVolumeMm3 <= 0 && !t.implant) {
             std::ostringstream reason;
             reason << "tooth " << t.unn << " does not reach the bone (no root surface within the "
                    << options.gapBridgeMm << " mm gap bridge of a socket), so it gets no PDL; is the file in the "

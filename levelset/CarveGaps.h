@@ -53,6 +53,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,10 @@ struct CarveOptions {
     std::map<int, PdlProfile> toothPdl; ///< a tooth's own PDL (UNN -> profile; uniform: three equal values)
     std::map<int, ToothAxes> axes;      ///< optional tooth axes (long axis for the profile)
     bool pdlKept = false;               ///< set by keptPdlCarveOptions (recorded in summary.json)
+    /// UNNs whose level set is an implant (an edit, levelset/ImplantBody.h): carved as a tooth with
+    /// no PDL (thickness 0: no erosion, no widening, its gaps bridged into bone), so it is fused
+    /// to the bone; labelled implantLabel(unn).
+    std::set<int> implants;
 };
 
 struct ThicknessStats {
@@ -91,6 +96,7 @@ struct ToothCarveSummary {
     double pdlVolumeMm3 = 0;
     double rootAreaFraction = 0; ///< root/crown split: share of the carved tooth's surface facing its PDL
     bool impacted = false;       ///< PDL forms a closed envelope (no PDL face to the outside)
+    bool implant = false;        ///< an implant (CarveOptions::implants): no PDL by design
     ThicknessStats thickness;    ///< tooth-side PDL interface to bone-side interface, cap excluded
 };
 
@@ -167,7 +173,7 @@ CarveOptions carveOptionsFromJson(const nlohmann::json& j, const std::string& na
 /// and carve_seconds, as summary.json records them.
 nlohmann::json toJson(const CarveSummary& summary);
 
-/// Throws Error naming the tooth's file when a carved tooth got no PDL: it does not reach the bone
+/// Throws Error naming the tooth's file when a carved tooth (not an implant) got no PDL: it does not reach the bone
 /// (a tooth in another coordinate frame, of the other jaw, or far from its socket). runJaw calls it
 /// after carving, before the long surface and TetGen stages that would end in a missing PDL.
 void requireBoneContact(const CarveSummary& summary, const JawCase& jawCase, const CarveOptions& options);

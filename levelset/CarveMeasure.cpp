@@ -89,7 +89,7 @@ double percentile(const std::vector<double>& sorted, double q) {
 
 void measureTooth(const LabelField& field, int unn, double capExclusionMm, ToothCarveSummary& out) {
     if (!field.labels) throw Error("measureTooth: label field without labels");
-    const Label toothL = toothLabel(unn), pdlL = pdlLabel(unn), boneL = boneLabel(field.jaw);
+    const Label toothL = out.implant ? implantLabel(unn) : toothLabel(unn), pdlL = pdlLabel(unn), boneL = boneLabel(field.jaw);
     const auto& labels = *field.labels;
     const auto& xf = labels.transform();
     const double voxel = xf.voxelSize()[0];

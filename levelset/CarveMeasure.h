@@ -17,6 +17,7 @@ namespace jawmesh {
 ///    (the cap at the crest, the clearance to other teeth) are excluded.
 ///  * volumes (voxel counts, tiles included) of tooth and PDL; rootAreaFraction = tooth voxel faces
 ///    towards its PDL / all tooth boundary faces; impacted = PDL has no face to the outside.
+/// out.implant selects implantLabel(unn) for the tooth (its PDL figures are then 0).
 /// Uses labels and the distances of toothLabel(unn) and the bone (sub-voxel interface placement;
 /// voxel centres are used where a distance grid is missing).
 /// Throws Error for an invalid unn or a field without labels. Cost: one pass over the voxels of

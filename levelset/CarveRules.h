@@ -58,6 +58,7 @@ struct CarveRules {
 struct ToothWork {
     int unn = 0;
     Label toothL = 0, pdlL = 0;
+    bool implant = false;    ///< CarveOptions::implants: thickness 0, no PDL grid
     FloatGrid::ConstPtr T;   ///< tooth distance: input band, plus exterior distances where bone is
                              ///< within gap-bridging reach; +-far elsewhere outside the band
     FloatGrid::Ptr X;        ///< bone distance off the bone band where this tooth is within reach:

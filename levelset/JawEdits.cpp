@@ -1,10 +1,16 @@
 // Implements levelset/JawEdits.h; what it computes, its rules and its contract are documented there.
 #include "levelset/JawEdits.h"
 
+#include "levelset/Csg.h"
 #include "levelset/HealSocket.h"
+#include "levelset/ImplantBody.h"
 #include "levelset/LowerCrest.h"
 
+#include <openvdb/tools/Interpolation.h>
+
 #include <chrono>
+#include <iomanip>
+#include <sstream>
 #include <type_traits>
 
 namespace jawmesh {
@@ -119,6 +125,80 @@ nlohmann::json apply(EditContext& ctx, const PdlThicknessEdit& e) {
     return {{"op", "pdl_thickness"},
             {"tooth", e.tooth},
             {"profile_mm", {{"cervical", e.cervicalMm}, {"mid_root", e.midRootMm}, {"apical", e.apicalMm}}}};
+}
+
+/// How deep the bone reaches below the platform along the axis and over the body's apical disc
+/// (mm, in steps of half a voxel, up to beyond the body): an implant longer than that would leave
+/// the bone. Returns the first depth at which a sample is outside the bone.
+double boneDepthBelowPlatform(const openvdb::FloatGrid& bone, const ImplantEdit& e, const ImplantPlacement& at) {
+    const openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> B(
+        bone.getConstAccessor(), bone.transform());
+    const LongAxis& a = at.axis;
+    const openvdb::Vec3d across = (std::abs(a.axis.x()) < 0.9 ? openvdb::Vec3d(1, 0, 0) : openvdb::Vec3d(0, 1, 0)).cross(a.axis).unit();
+    const openvdb::Vec3d across2 = a.axis.cross(across);
+    const double r = 0.5 * e.diameterMm, step = 0.5 * uniformVoxelSizeMm(bone);
+    // From two voxels down: a platform at the crest lies on the bone's surface.
+    for (double depth = 4 * step; depth <= e.lengthMm + step; depth += step) {
+        const openvdb::Vec3d c = a.origin + a.axis * (at.platformMm - depth);
+        if (B.wsSample(c) >= 0) return depth;
+        // The apical disc's rim: a body whose tip is in bone but whose side pokes out is too long too.
+        if (depth >= e.lengthMm - step)
+            for (int k = 0; k < 8; ++k) {
+                const double phi = k * M_PI / 4;
+                if (B.wsSample(c + (across * std::cos(phi) + across2 * std::sin(phi)) * r) >= 0) return depth;
+            }
+    }
+    return e.lengthMm + step;
+}
+
+/// Throws Error when the implant's surface comes within a PDL and a voxel of another tooth (or
+/// within that tooth's band, when it is narrower): it would cut into that root or its ligament
+/// (carving would split them on the bisector instead).
+void requireClearOfTeeth(const openvdb::FloatGrid& implant, int unn, const std::map<int, openvdb::FloatGrid::ConstPtr>& teeth,
+                         double reachMm, const std::string& where) {
+    for (const auto& [other, grid] : teeth) {
+        if (other == unn) continue;
+        auto T = grid->getConstAccessor();
+        // Off its band a level set holds +-background: only a value under it is a distance.
+        const double reach = std::min(reachMm, 0.99 * bandHalfWidthMm(*grid));
+        for (auto v = implant.cbeginValueOn(); v; ++v)
+            if (*v <= 0 && T.getValue(v.getCoord()) < reach)
+                throw Error(where + ": the implant in place of tooth " + std::to_string(unn) + " reaches tooth " +
+                            std::to_string(other) + " (its root or PDL); choose a narrower or shorter implant");
+    }
+}
+
+nlohmann::json apply(EditContext& ctx, const ImplantEdit& e) {
+    const LongAxis axis = ctx.axisOf(e.tooth);
+    const openvdb::FloatGrid& tooth = *ctx.levelSets.teeth.at(e.tooth);
+    SocketFill fill;
+    auto healed = healSocket(*ctx.levelSets.bone, tooth, axis, ctx.carve.gapBridgeMm, fill, ctx.where);
+    const ImplantPlacement at{axis, fill.levelMm - e.platformDepthMm, fill.levelMm};
+    const double boneDepth = boneDepthBelowPlatform(*healed, e, at);
+    if (boneDepth <= e.lengthMm) {
+        std::ostringstream s;
+        s << std::fixed << std::setprecision(1) << ctx.where << ": a " << e.lengthMm << " mm implant along tooth " << e.tooth
+          << "'s axis leaves the bone " << boneDepth << " mm below its platform; choose a shorter implant";
+        throw Error(s.str());
+    }
+    auto implant = implantLevelSet(e, at, tooth);
+    const double pdlMax = std::max(ctx.carve.pdlThicknessMm, ctx.carve.profile ? std::max({ctx.carve.profile->cervical,
+                                   ctx.carve.profile->midRoot, ctx.carve.profile->apical}) : 0.0);
+    requireClearOfTeeth(*implant, e.tooth, ctx.levelSets.teeth, pdlMax + uniformVoxelSizeMm(*implant), ctx.where);
+    ctx.levelSets.bone = healed;
+    ctx.levelSets.teeth[e.tooth] = implant;
+    ctx.carve.toothPdl.erase(e.tooth);
+    ctx.carve.implants.insert(e.tooth);
+    const openvdb::Vec3d platform = axis.origin + axis.axis * at.platformMm;
+    nlohmann::json record = toJson(e);
+    record["axis"] = toJson(axis);
+    record["platform_centre"] = {platform.x(), platform.y(), platform.z()};
+    record["crest_mm"] = fill.levelMm;
+    record["platform_mm"] = at.platformMm;
+    record["bone_depth_below_platform_mm"] = boneDepth;
+    record["body_volume_mm3"] = implantBodyVolumeMm3(e);
+    record["filled_volume_mm3"] = fill.filledVolumeMm3;
+    return record;
 }
 
 }  // namespace

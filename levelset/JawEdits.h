@@ -5,6 +5,9 @@
 //   extract        the tooth's level set is dropped; a healed socket fills with bone (HealSocket.h)
 //   bone_loss      the crest around the teeth is lowered along their axes (LowerCrest.h)
 //   pdl_thickness  the tooth's own PDL thickness or profile (CarveOptions::toothPdl)
+//   implant        the socket heals, an implant goes in along the tooth's axis (ImplantBody.h)
+//                  and carving fuses it to the bone (CarveOptions::implants); refused when it
+//                  would leave the bone or reach another tooth
 #pragma once
 
 #include "io/Edits.h"

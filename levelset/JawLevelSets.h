@@ -15,7 +15,8 @@ namespace jawmesh {
 /// The input level sets of one jaw, grids named after their labels.
 struct JawLevelSets {
     openvdb::FloatGrid::Ptr bone;
-    std::map<int, openvdb::FloatGrid::ConstPtr> teeth;  ///< by UNN
+    /// By UNN; an implant in place of a tooth (CarveOptions::implants) is carved as one with no PDL.
+    std::map<int, openvdb::FloatGrid::ConstPtr> teeth;
 };
 
 /// meshToLevelSet of the bone and every tooth of `surfaces` (read from `jawCase`). Throws Error

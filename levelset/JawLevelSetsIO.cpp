@@ -29,8 +29,10 @@ openvdb::FloatGrid::Ptr readLevelSet(const std::string& path) {
 void writeJawLevelSets(const JawLevelSets& levelSets, Jaw jaw, const CarveOptions& carve, const std::string& dir) {
     fs::create_directories(dir);
     writeGridFile(levelSets.bone, dir + "/bone.vdb");
-    for (const auto& [unn, grid] : levelSets.teeth)
-        writeGridFile(std::const_pointer_cast<openvdb::FloatGrid>(grid), dir + "/tooth_" + std::to_string(unn) + ".vdb");
+    for (const auto& [unn, grid] : levelSets.teeth) {
+        const std::string kind = carve.implants.count(unn) ? "/implant_" : "/tooth_";
+        writeGridFile(std::const_pointer_cast<openvdb::FloatGrid>(grid), dir + kind + std::to_string(unn) + ".vdb");
+    }
     const nlohmann::json j = {{"jaw", jawName(jaw)}, {"options", toJson(carve)}};
     writeFileAtomically(dir + "/carve.json", [&](std::ostream& out) { out << j.dump(2) << '\n'; }, false);
     if (!carve.axes.empty()) writeToothAxes(carve.axes, dir + "/teeth_axes.json");
@@ -74,15 +76,21 @@ StoredJawLevelSets readJawLevelSets(const std::string& dir) {
     }
     if (fs::exists(dir + "/teeth_axes.json")) s.carve.axes = readToothAxes(dir + "/teeth_axes.json");
     s.levelSets.bone = readLevelSet(dir + "/bone.vdb");
-    const std::regex tooth("tooth_([0-9]+)\\.vdb");
+    const std::regex tooth("(tooth|implant)_([0-9]+)\\.vdb");
     for (const auto& entry : fs::directory_iterator(dir)) {
         std::smatch m;
         const std::string name = entry.path().filename().string();
         if (!std::regex_match(name, m, tooth)) continue;
+        const int unn = std::stoi(m[2]);
+        if ((m[1] == "implant") != (s.carve.implants.count(unn) > 0))
+            throw Error(entry.path().string(), "carve.json's \"implants\" and the grid files disagree on tooth " + std::to_string(unn));
+        if (s.levelSets.teeth.count(unn)) throw Error(entry.path().string(), "a second grid for tooth " + std::to_string(unn));
         auto grid = readLevelSet(entry.path().string());
         requireSameTransform(*s.levelSets.bone, *grid, entry.path().c_str());
-        s.levelSets.teeth[std::stoi(m[1])] = grid;
+        s.levelSets.teeth[unn] = grid;
     }
+    for (int unn : s.carve.implants)
+        if (!s.levelSets.teeth.count(unn)) throw Error(carvePath, "implant_" + std::to_string(unn) + ".vdb is missing");
     return s;
 }
 

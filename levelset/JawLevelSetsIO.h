@@ -1,6 +1,7 @@
 // A jaw's input level sets and the carve's options, kept beside its carved field so that the jaw
 // can be edited and carved again (`jawmesh edit`, levelset/JawEdits.h), and the edits so far:
 //   <dir>/bone.vdb, <dir>/tooth_<UNN>.vdb   the level sets carving started from (edits applied)
+//   <dir>/implant_<UNN>.vdb                  an implant in place of tooth UNN (CarveOptions::implants)
 //   <dir>/carve.json                        {"jaw", "options": toJson(CarveOptions)}
 //   <dir>/teeth_axes.json                   the case's tooth axes, when it had them
 // in <folder>/input beside the carved field (LabelFieldIO.h) in <folder>, and <folder>/edits.json.

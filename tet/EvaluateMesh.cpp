@@ -47,6 +47,7 @@ std::string kindName(LabelKind k) {
     case LabelKind::Bone: return "bone";
     case LabelKind::Tooth: return "tooth";
     case LabelKind::Pdl: return "pdl";
+    case LabelKind::Implant: return "implant";
     default: return "outside";
     }
 }

@@ -72,7 +72,8 @@ std::string regionSurfaceFileName(Label label) {
     switch (labelKind(label)) {
     case LabelKind::Bone: return "bone.stl";
     case LabelKind::Tooth:
-    case LabelKind::Pdl: return labelName(label) + ".stl";
+    case LabelKind::Pdl:
+    case LabelKind::Implant: return labelName(label) + ".stl";
     default: throw Error("label " + std::to_string(label) + " has no region surface");
     }
 }

@@ -101,7 +101,8 @@ std::vector<double> seedVolumeBounds(const InterfaceComplex& plc, const TetOptio
         double edge = 0;
         switch (labelKind(seed.label)) {
         case LabelKind::Bone: edge = o.boneEdgeMm; break;
-        case LabelKind::Tooth: edge = o.toothEdgeMm; break;
+        case LabelKind::Tooth:
+        case LabelKind::Implant: edge = o.toothEdgeMm; break;
         case LabelKind::Pdl: edge = o.pdlEdgeMm; break;
         default: break;
         }

@@ -239,9 +239,17 @@ void checkTeeth(const TetMesh& m, const std::vector<int>& expected, ValidationRe
             r.missingTeeth.push_back(unn);
             continue;
         }
+        if (r.tetsPerLabel.count(implantLabel(unn))) {  // an implant in its place: fused, no PDL
+            const Label implant = implantLabel(unn);
+            if (!r.interfaceFacesPerPair.count({kMandibleBoneLabel, implant}) &&
+                !r.interfaceFacesPerPair.count({kMaxillaBoneLabel, implant}))
+                r.unfusedImplants.push_back(unn);
+            continue;
+        }
         if (!r.tetsPerLabel.count(toothLabel(unn))) r.missingTeeth.push_back(unn);
         if (!r.tetsPerLabel.count(pdlLabel(unn))) r.missingPdls.push_back(unn);
     }
+    if (!r.unfusedImplants.empty()) r.messages.push_back("implants sharing no face with the bone: " + unnList(r.unfusedImplants));
     if (!r.missingTeeth.empty()) r.messages.push_back("expected teeth missing: " + unnList(r.missingTeeth));
     if (!r.missingPdls.empty()) r.messages.push_back("PDL missing for teeth: " + unnList(r.missingPdls));
 
@@ -250,7 +258,7 @@ void checkTeeth(const TetMesh& m, const std::vector<int>& expected, ValidationRe
     for (const auto& [label, count] : r.tetsPerLabel) {
         if (!isJawLabel(label)) continue;
         const LabelKind k = labelKind(label);
-        unnOf[label] = (k == LabelKind::Tooth || k == LabelKind::Pdl) ? labelUnn(label) : 0;
+        unnOf[label] = (isToothLike(k) || k == LabelKind::Pdl) ? labelUnn(label) : 0;
     }
     std::vector<std::int8_t> owner(m.nodes.size(), 0);
     std::vector<char> conflict(m.nodes.size(), 0);
@@ -279,7 +287,7 @@ void checkTeeth(const TetMesh& m, const std::vector<int>& expected, ValidationRe
 
 std::size_t ValidationReport::violationCount() const {
     return badIndices + unknownLabels + sizeMismatch + nonManifoldFaces + duplicateNodes + coincidentFaces + invertedTets +
-           degenerateTets + missingTeeth.size() + missingPdls.size() + pdlForeignContacts + teethSharingNodes;
+           degenerateTets + missingTeeth.size() + missingPdls.size() + unfusedImplants.size() + pdlForeignContacts + teethSharingNodes;
 }
 
 ValidationReport validateTetMesh(const TetMesh& mesh, const std::vector<int>& expectedTeethUnn) {
@@ -331,6 +339,7 @@ nlohmann::json toJson(const ValidationReport& r) {
                        {"degenerate_tets", r.degenerateTets},
                        {"missing_teeth", r.missingTeeth},
                        {"missing_pdls", r.missingPdls},
+                       {"unfused_implants", r.unfusedImplants},
                        {"pdl_foreign_contacts", r.pdlForeignContacts},
                        {"teeth_sharing_nodes", r.teethSharingNodes}};
     j["violation_count"] = r.violationCount();

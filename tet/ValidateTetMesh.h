@@ -36,6 +36,7 @@ struct ValidationReport {
     std::size_t degenerateTets = 0;       ///< |6 V| <= 1e-9 * (longest edge)^3
     std::vector<int> missingTeeth;        ///< expected UNN without tooth tets
     std::vector<int> missingPdls;         ///< expected UNN without PDL tets
+    std::vector<int> unfusedImplants;     ///< expected UNN whose implant shares no face with the bone
     std::size_t pdlForeignContacts = 0;   ///< faces between pdl_i and anything but tooth_i, bone, outside
     std::size_t teethSharingNodes = 0;    ///< nodes used by regions of two different teeth
     std::vector<std::string> messages;    ///< one line per failed check, with an example location
@@ -45,7 +46,8 @@ struct ValidationReport {
 };
 
 /// Runs every check on `mesh`. `expectedTeethUnn` lists the teeth that must be present (with their
-/// PDL); empty skips the presence check. Never throws for a bad mesh (that is what the report is
+/// PDL), or an implant in their place (fused: sharing faces with the bone); empty skips the
+/// presence check. Never throws for a bad mesh (that is what the report is
 /// for). Cost: O(T log T) (parallel sorts of faces and nodes); about 1-2 s for 1 M tets on two
 /// cores; result independent of the thread count.
 ValidationReport validateTetMesh(const TetMesh& mesh, const std::vector<int>& expectedTeethUnn);

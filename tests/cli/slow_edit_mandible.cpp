@@ -2,11 +2,14 @@
 // runs: JAWMESH_MANDIBLE_RUN=<out>/mandible (as made, `quickstart.sh mandible-test`) and
 // JAWMESH_MANDIBLE_EDIT_RUN=<out>/mandible (the same case with tests/data/mandible_what_if.json:
 // 2 mm of bone loss around teeth 23-26, tooth 30 extracted with a healed socket, PDL 24 at
-// 0.3 mm). Without them the tests skip.
+// 0.3 mm, an implant of 4.1 x 10 mm in place of tooth 19). Without them the tests skip.
 #include "io/GmshReader.h"
 #include "io/Labels.h"
 #include "support/TestData.h"
+#include "support/TextFiles.h"
+#include "support_CliRun.h"
 #include "support_RunChecks.h"
+#include "tet/ValidateTetMesh.h"
 #include "tet/ElementQuality.h"
 
 #include <gtest/gtest.h>
@@ -34,18 +37,13 @@ std::optional<Runs> runs() {
     return Runs{before, after};
 }
 
-nlohmann::json readJson(const fs::path& p) {
-    std::ifstream in(p);
-    return nlohmann::json::parse(in);
-}
-
 TetMesh readMesh(const std::string& jawDir) { return readGmsh(jawDir + "/volumetric_meshes/mandible.msh"); }
 
 Vec3 vec(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
 
 /// The applied edit with this op, from run.json's history.
 nlohmann::json applied(const std::string& jawDir, const std::string& op) {
-    const nlohmann::json run = readJson(fs::path(jawDir) / "run.json");
+    const nlohmann::json run = test::readJson(fs::path(jawDir) / "run.json");
     for (const auto& record : run.at("edits"))
         for (const auto& e : record.at("applied"))
             if (e.at("op") == op) return e;
@@ -72,8 +70,8 @@ TEST(SlowEditMandible, EditedMeshMeetsEveryMeshCheckWithItsOwnPdlTarget) {
     const std::string input = test::sharedData("openmandible/input/mandible");
     JAWMESH_REQUIRE_SHARED(input);
     std::vector<int> teeth = test::teethIn(input + "/teeth");
-    teeth.erase(std::remove(teeth.begin(), teeth.end(), 30), teeth.end());
-    ASSERT_EQ(teeth.size(), 13u);
+    for (int gone : {19, 30}) teeth.erase(std::remove(teeth.begin(), teeth.end(), gone), teeth.end());
+    ASSERT_EQ(teeth.size(), 12u);
     const test::RunFigures f = test::measureRun(r->after, input, "mandible", teeth);
     EXPECT_TRUE(f.validation.valid()) << "conformal, manifold, every tooth with its PDL";
     EXPECT_GE(f.quality.minDihedralDeg, 10.0 - 1e-6);
@@ -141,6 +139,44 @@ TEST(SlowEditMandible, HealedExtractionTurnsTheSocketIntoBone) {
     std::cout << "socket of tooth 30 below the healed level " << socket << " mm^3; bone around it grew " << grown
               << " mm^3 (" << heal.at("filled_volume_mm3") << " mm^3 of the input socket filled on the grid)\n";
     EXPECT_NEAR(grown, socket, 0.05 * socket);
+}
+
+/// Load-point displacement (mm) of tooth `unn` under `jawmesh fe`'s tipping load, solved by CalculiX
+/// in the run's own folder.
+double tippingDisplacementMm(const std::string& jawDir, int unn) {
+    const test::CliResult fe = test::runJawmesh("-q fe " + jawDir + " --scenario tipping --format inp --order 1 --solve",
+                                                fs::path(jawDir) / "simulation-tipping.log");
+    if (fe.exitCode != 0) throw std::runtime_error(jawDir + ": jawmesh fe failed: " + fe.output);
+    const nlohmann::json summary = test::readJson(fs::path(jawDir) / "simulation" / "tipping_calculix_summary.json");
+    for (const auto& t : summary.at("teeth"))
+        if (t.at("unn") == unn) return t.at("magnitude_mm").get<double>();
+    throw std::runtime_error(jawDir + ": tooth " + std::to_string(unn) + " was not loaded");
+}
+
+TEST(SlowEditMandible, ImplantTakesToothNineteensPlaceFusedAndMovesLessUnderTipping) {
+    REQUIRE_RUNS();
+    const TetMesh after = readMesh(r->after);
+    const Label implant = implantLabel(19);
+    for (Label l : after.labels) ASSERT_TRUE(l != toothLabel(19) && l != pdlLabel(19)) << "label " << l << " left";
+    const ValidationReport v = validateTetMesh(after, {19});
+    EXPECT_TRUE(v.valid()) << toJson(v).dump(1);
+    ASSERT_TRUE(v.tetsPerLabel.count(implant));
+    const std::size_t fused = v.interfaceFacesPerPair.count({kMandibleBoneLabel, implant})
+                                  ? v.interfaceFacesPerPair.at({kMandibleBoneLabel, implant}) : 0;
+    EXPECT_GT(fused, 1000u) << "faces shared by the implant and the bone";
+    // The body below the platform against the cylinder's volume.
+    const nlohmann::json placed = applied(r->after, "implant");
+    const double body = placed.at("body_volume_mm3").get<double>();
+    EXPECT_NEAR(body, M_PI * 2.05 * 2.05 * 10.0, 1e-9);
+    const double meshed = test::volumeBelowPlaneMm3(after, {implant}, vec(placed.at("platform_centre")),
+                                                    vec(placed.at("axis").at("direction")));
+    std::cout << "implant 19: body below the platform " << meshed << " mm^3 meshed, " << body << " mm^3 analytic ("
+              << 100.0 * (meshed - body) / body << " %); " << fused << " faces fused to the bone\n";
+    EXPECT_NEAR(meshed, body, 0.02 * body);
+    // The same tipping load on the natural tooth 19 (the unedited run) and on the implant's crown.
+    const double natural = tippingDisplacementMm(r->before, 19), implanted = tippingDisplacementMm(r->after, 19);
+    std::cout << "tipping load point of 19: natural tooth " << natural << " mm, implant " << implanted << " mm\n";
+    EXPECT_LT(implanted, natural);
 }
 
 }  // namespace

@@ -22,11 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json readJson(const fs::path& p) {
-    std::ifstream in(p);
-    return nlohmann::json::parse(in);
-}
-
 /// Writes the edits, runs the phantom case with them into <dir>/<name>, returns the jaw folder.
 fs::path runWithEdits(const fs::path& dir, const std::string& name, const nlohmann::json& edits) {
     const fs::path file = dir / (name + ".json");
@@ -56,7 +51,7 @@ TEST(RunEdits, WhatIfsReachTheMeshRunJsonAndReport) {
 
     // The crest drop and the healed socket, as run.json records them on the grids, and on the meshes:
     // the bone grew by the socket's volume.
-    const nlohmann::json run = readJson(b / "run.json");
+    const nlohmann::json run = test::readJson(b / "run.json");
     ASSERT_EQ(run.at("edits").size(), 1u);
     const auto& applied = run.at("edits")[0].at("applied");
     ASSERT_EQ(applied.size(), 3u);
@@ -74,7 +69,7 @@ TEST(RunEdits, WhatIfsReachTheMeshRunJsonAndReport) {
               << " mm^3 of input socket filled on the grid)\n";
     EXPECT_NEAR(grown, socket, 0.05 * socket);
 
-    const nlohmann::json report = readJson(b / "report" / "report.json");
+    const nlohmann::json report = test::readJson(b / "report" / "report.json");
     EXPECT_EQ(report.at("edits"), run.at("edits"));
     EXPECT_EQ(report.at("verdict").at("status"), "pass") << report.at("verdict").at("line");
     // The options record the edits in the form a --config file takes back (batches hash them).
@@ -109,12 +104,12 @@ TEST(RunEdits, EditOnACarvedFolderGivesTheRunsMeshAndKeepsItsHistory) {
 
     const fs::path msh = fs::path("mandible") / "volumetric_meshes" / "mandible.msh";
     EXPECT_EQ(test::readText(dir / "fromvdb" / msh), test::readText(dir / "direct" / msh)) << "edit + --from-vdb and run --edits differ";
-    const nlohmann::json history = readJson(dir / "e2" / "edits.json");
+    const nlohmann::json history = test::readJson(dir / "e2" / "edits.json");
     ASSERT_EQ(history.size(), 2u);
     EXPECT_EQ(history[1].at("applied")[0].at("op"), "pdl_thickness");
-    const nlohmann::json run = readJson(dir / "fromvdb" / "mandible" / "run.json");
+    const nlohmann::json run = test::readJson(dir / "fromvdb" / "mandible" / "run.json");
     EXPECT_EQ(run.at("edits"), history);
-    const nlohmann::json report = readJson(dir / "fromvdb" / "mandible" / "report" / "report.json");
+    const nlohmann::json report = test::readJson(dir / "fromvdb" / "mandible" / "report" / "report.json");
     EXPECT_EQ(report.at("verdict").at("status"), "pass") << report.at("verdict").at("line");
     EXPECT_EQ(report.at("options").at("tooth_pdl_target_mm").at("25"), 0.3);
     // A folder without input level sets (an old one, or edited by hand) is refused, naming the file.
@@ -136,8 +131,8 @@ TEST(RunEdits, BatchAppliesTheEditsToEveryCaseAndHashesThem) {
                                                    " --config " + test::fastConfig() + " --edits " + (dir / "e.json").string(),
                                                dir / "batch.log");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_EQ(readJson(dir / "out" / "options.json").at("edits")[1].at("tooth"), 25);
-    const nlohmann::json run = readJson(dir / "out" / "p1" / "mandible" / "run.json");
+    EXPECT_EQ(test::readJson(dir / "out" / "options.json").at("edits")[1].at("tooth"), 25);
+    const nlohmann::json run = test::readJson(dir / "out" / "p1" / "mandible" / "run.json");
     EXPECT_EQ(run.at("edits")[0].at("applied")[1].at("op"), "extract");
     EXPECT_NEAR(run.at("edits")[0].at("applied")[0].at("teeth")[0].at("crest_drop_mm").get<double>(), 1.0, 0.1);
     EXPECT_GT(run.at("mesh").at("tets").get<std::size_t>(), 0u);

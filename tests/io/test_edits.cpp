@@ -31,11 +31,26 @@ TEST(EditFile, ReadsTheIssuesExampleAndRoundTrips) {
         {"op": "pdl_thickness", "tooth": 24, "thickness_mm": 0.3},
         {"op": "pdl_thickness", "tooth": 19, "profile_mm": {"cervical": 0.3, "mid_root": 0.2, "apical": 0.25}},
         {"op": "extract", "tooth": 31},
-        {"op": "bone_loss", "tooth": 27, "side": "distal", "depth_mm": 3.0, "width_mm": 1.5}
+        {"op": "bone_loss", "tooth": 27, "side": "distal", "depth_mm": 3.0, "width_mm": 1.5},
+        {"op": "implant", "tooth": 18, "diameter_mm": 4.1, "length_mm": 10.0},
+        {"op": "implant", "tooth": 20, "diameter_mm": 3.5, "length_mm": 8.0, "body": "screw", "platform_depth_mm": 0.5,
+         "thread_pitch_mm": 0.6, "crown": "none"}
     ]})";
     const EditList list = readEditFile(path.string());
     std::filesystem::remove(path);
-    ASSERT_EQ(list.edits.size(), 6u);
+    ASSERT_EQ(list.edits.size(), 8u);
+    const auto& implant = std::get<ImplantEdit>(list.edits[6]);
+    EXPECT_EQ(implant.diameterMm, 4.1);
+    EXPECT_EQ(implant.lengthMm, 10.0);
+    EXPECT_EQ(implant.body, ImplantEdit::Body::Cylinder);
+    EXPECT_TRUE(implant.crown);
+    const auto& screw = std::get<ImplantEdit>(list.edits[7]);
+    EXPECT_EQ(screw.body, ImplantEdit::Body::Screw);
+    EXPECT_EQ(screw.threadPitchMm, 0.6);
+    EXPECT_EQ(screw.threadDepthMm, 0.3);
+    EXPECT_EQ(screw.platformDepthMm, 0.5);
+    EXPECT_FALSE(screw.crown);
+    EXPECT_EQ(implantedTeeth(list), (std::vector<int>{18, 20}));
     const auto& defect = std::get<AngularDefectEdit>(list.edits[5]);
     EXPECT_EQ(defect.side, AngularDefectEdit::Side::Distal);
     EXPECT_EQ(defect.widthMm, 1.5);
@@ -49,9 +64,9 @@ TEST(EditFile, ReadsTheIssuesExampleAndRoundTrips) {
     EXPECT_EQ(extractedTeeth(list), (std::vector<int>{30, 31}));
     const nlohmann::json recorded = toJson(list);
     EXPECT_EQ(toJson(parseEdits({{"edits", recorded.at("edits")}}, "again")).at("edits"), recorded.at("edits"));
-    EXPECT_NO_THROW(requireEditsFit(list, {19, 23, 24, 25, 26, 27, 30, 31}));
+    EXPECT_NO_THROW(requireEditsFit(list, {18, 19, 20, 23, 24, 25, 26, 27, 30, 31}));
     try {
-        requireEditsFit(list, {19, 23, 24, 25, 27, 30, 31});
+        requireEditsFit(list, {18, 19, 20, 23, 24, 25, 27, 30, 31});
         FAIL() << "tooth 26 is missing";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("edits[0]: tooth 26 is not in this jaw"), std::string::npos) << e.what();
@@ -81,6 +96,19 @@ TEST(EditFile, RefusesMalformedEntriesNamingFileAndEntry) {
               std::string::npos);
     EXPECT_NE(refusal(R"({"edits": [{"op": "extract", "tooth": 3}, {"op": "pdl_thickness", "tooth": 3, "thickness_mm": 0.3}]})")
                   .find("edits[1] (pdl_thickness): tooth 3 was extracted by an earlier edit"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "implant", "tooth": 19, "diameter_mm": -4.1, "length_mm": 10}]})").find("'diameter_mm' is -4.1"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "implant", "tooth": 19, "diameter_mm": 4.1}]})").find("'length_mm' is missing"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "implant", "tooth": 19, "diameter_mm": 4.1, "length_mm": 10, "body": "blade"}]})").find("'body'"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "implant", "tooth": 19, "diameter_mm": 4.1, "length_mm": 10, "body": "screw",
+                                     "thread_depth_mm": 1.0}]})").find("'thread_depth_mm' is 1"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"edits": [{"op": "implant", "tooth": 19, "diameter_mm": 4.1, "length_mm": 10},
+                                    {"op": "pdl_thickness", "tooth": 19, "thickness_mm": 0.3}]})")
+                  .find("edits[1] (pdl_thickness): tooth 19 was replaced by an implant by an earlier edit"),
               std::string::npos);
     try {
         readEditFile("/nonexistent/edits.json");

@@ -188,7 +188,8 @@ TEST(JawEdits, PdlThicknessEditSetsOneToothsPdl) {
 
 TEST(JawEdits, AreDeterministic) {
     const auto edits = editsOf({{{"op", "bone_loss"}, {"teeth", {24}}, {"depth_mm", 1.5}},
-                                {{"op", "extract"}, {"tooth", 26}, {"socket", "healed"}}});
+                                {{"op", "extract"}, {"tooth", 26}, {"socket", "healed"}},
+                                {{"op", "implant"}, {"tooth", 25}, {"diameter_mm", 3.0}, {"length_mm", 8.0}, {"body", "screw"}}});
     JawLevelSets a = analyticJaw(), b = analyticJaw();
     CarveOptions ca, cb;
     const auto withoutTimes = [](nlohmann::json record) {
@@ -196,9 +197,12 @@ TEST(JawEdits, AreDeterministic) {
         return record;
     };
     EXPECT_EQ(withoutTimes(applyEdits(edits, a, ca)), withoutTimes(applyEdits(edits, b, cb)));
-    ASSERT_EQ(a.bone->activeVoxelCount(), b.bone->activeVoxelCount());
-    auto acc = b.bone->getConstAccessor();
-    for (auto it = a.bone->cbeginValueOn(); it; ++it) ASSERT_EQ(*it, acc.getValue(it.getCoord()));
+    using Grids = std::pair<openvdb::FloatGrid::ConstPtr, openvdb::FloatGrid::ConstPtr>;
+    for (const auto& [ga, gb] : {Grids(a.bone, b.bone), Grids(a.teeth.at(25), b.teeth.at(25))}) {
+        ASSERT_EQ(ga->activeVoxelCount(), gb->activeVoxelCount());
+        auto acc = gb->getConstAccessor();
+        for (auto it = ga->cbeginValueOn(); it; ++it) ASSERT_EQ(*it, acc.getValue(it.getCoord()));
+    }
 }
 
 TEST(JawEdits, RefuseWhatCannotApplyNamingTheEntry) {
@@ -217,4 +221,45 @@ TEST(JawEdits, RefuseWhatCannotApplyNamingTheEntry) {
     const std::string deep = refused({{{"op", "bone_loss"}, {"teeth", {25}}, {"depth_mm", 9.5}}});
     EXPECT_NE(deep.find("edits.json: edits[0]"), std::string::npos) << deep;
     EXPECT_NE(deep.find("of it in bone"), std::string::npos) << deep;
+    // The box is 13 mm deep under its crest: a 14 mm implant would leave it.
+    const std::string longer = refused({{{"op", "implant"}, {"tooth", 25}, {"diameter_mm", 3.0}, {"length_mm", 14.0}}});
+    EXPECT_NE(longer.find("edits.json: edits[0]: a 14.0 mm implant along tooth 25's axis leaves the bone"), std::string::npos)
+        << longer;
+}
+
+TEST(JawEdits, ImplantReplacesTheToothFusedToTheBoneWithItsBodysVolume) {
+    JawLevelSets jaw = analyticJaw();
+    CarveOptions carve;
+    const nlohmann::json record = applyEdits(
+        editsOf({{{"op", "implant"}, {"tooth", 25}, {"diameter_mm", 3.0}, {"length_mm", 10.0}}}), jaw, carve);
+    const auto& e = record.at("applied")[0];
+    EXPECT_EQ(carve.implants, std::set<int>{25});
+    EXPECT_NEAR(e.at("crest_mm").get<double>() + e.at("axis").at("origin")[2].get<double>(), 0.0, 0.06);
+    CarveSummary summary;
+    const LabelField field = carveJaw(Jaw::Mandible, *jaw.bone, jaw.teeth, carve, summary);
+    EXPECT_TRUE(field.distances.count(implantLabel(25)));
+    EXPECT_FALSE(field.distances.count(toothLabel(25)) || field.distances.count(pdlLabel(25)));
+    // Voxels of the implant below the platform (the crest, z = 0) against pi r^2 L; faces with the
+    // bone all round the body (fused), none with the PDLs or teeth beside it.
+    const double voxel3 = std::pow(kJawVoxelMm, 3);
+    std::size_t below = 0, boneFaces = 0, otherFaces = 0;
+    auto labels = field.labels->getConstAccessor();
+    const openvdb::CoordBBox box(openvdb::Coord(-60, -60, -260), openvdb::Coord(60, 60, 80));
+    for (auto it = box.begin(); it; ++it) {
+        if (labels.getValue(*it) != implantLabel(25)) continue;
+        below += field.labels->transform().indexToWorld(*it).z() < 0;
+        for (const openvdb::Coord& d : {openvdb::Coord(1, 0, 0), openvdb::Coord(-1, 0, 0), openvdb::Coord(0, 1, 0),
+                                        openvdb::Coord(0, -1, 0), openvdb::Coord(0, 0, -1)}) {
+            const Label other = labels.getValue(*it + d);
+            boneFaces += other == kMandibleBoneLabel;
+            otherFaces += other != kMandibleBoneLabel && other != kOutsideLabel && other != implantLabel(25);
+        }
+    }
+    const double body = M_PI * 1.5 * 1.5 * 10.0;
+    EXPECT_NEAR(e.at("body_volume_mm3").get<double>(), body, 1e-9);
+    EXPECT_NEAR(double(below) * voxel3, body, 0.02 * body);
+    EXPECT_GT(boneFaces, 10000u);
+    EXPECT_EQ(otherFaces, 0u);
+    for (const auto& t : summary.teeth) EXPECT_EQ(t.implant, t.unn == 25) << "tooth " << t.unn;
+    EXPECT_EQ(summary.toothBoneContacts, 0u);
 }
