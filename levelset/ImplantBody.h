@@ -1,6 +1,7 @@
 // An implant's level set (issue #24): a cylindrical or screw-form body along a tooth's long axis,
-// its top (the platform) at a height on the axis, and with a crown the natural tooth's crown above
-// the crest on an abutment of the body's radius (one region: implant, abutment and crown). Carving
+// its top (the platform) at a height on the axis, and with a crown the natural tooth's crown on an
+// abutment of the body's radius: the abutment stands a collar clear of the crest, then the crown
+// flares out of it at 45 degrees (one region: implant, abutment and crown). Carving
 // fuses it to the bone (CarveOptions::implants: a tooth with no PDL).
 //
 // Distances: the body is a capped cylinder whose radius may vary with depth; for a cylinder its
