@@ -127,9 +127,14 @@ nlohmann::json apply(EditContext& ctx, const PdlThicknessEdit& e) {
             {"profile_mm", {{"cervical", e.cervicalMm}, {"mid_root", e.midRootMm}, {"apical", e.apicalMm}}}};
 }
 
-/// How deep the bone reaches below the platform along the axis and over the body's apical disc
-/// (mm, in steps of half a voxel, up to beyond the body): an implant longer than that would leave
-/// the bone. Returns the first depth at which a sample is outside the bone.
+/// How far past the implant's tip the depth is measured, mm (run.json records the bone's depth up
+/// to the body's length plus this).
+constexpr double kBoneDepthBeyondTipMm = 5.0;
+
+/// How deep the bone reaches below the platform along the axis and, from the body's length on,
+/// over its apical disc's rim (mm, in steps of half a voxel, up to kBoneDepthBeyondTipMm past the
+/// tip): an implant longer than that would leave the bone. Returns the first depth at which a
+/// sample is outside the bone.
 double boneDepthBelowPlatform(const openvdb::FloatGrid& bone, const ImplantEdit& e, const ImplantPlacement& at) {
     const openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> B(
         bone.getConstAccessor(), bone.transform());
@@ -138,7 +143,8 @@ double boneDepthBelowPlatform(const openvdb::FloatGrid& bone, const ImplantEdit&
     const openvdb::Vec3d across2 = a.axis.cross(across);
     const double r = 0.5 * e.diameterMm, step = 0.5 * uniformVoxelSizeMm(bone);
     // From two voxels down: a platform at the crest lies on the bone's surface.
-    for (double depth = 4 * step; depth <= e.lengthMm + step; depth += step) {
+    const double deepest = e.lengthMm + kBoneDepthBeyondTipMm;
+    for (double depth = 4 * step; depth <= deepest; depth += step) {
         const openvdb::Vec3d c = a.origin + a.axis * (at.platformMm - depth);
         if (B.wsSample(c) >= 0) return depth;
         // The apical disc's rim: a body whose tip is in bone but whose side pokes out is too long too.
@@ -148,7 +154,7 @@ double boneDepthBelowPlatform(const openvdb::FloatGrid& bone, const ImplantEdit&
                 if (B.wsSample(c + (across * std::cos(phi) + across2 * std::sin(phi)) * r) >= 0) return depth;
             }
     }
-    return e.lengthMm + step;
+    return deepest;
 }
 
 /// Throws Error when the implant's surface comes within a PDL and a voxel of another tooth (or
