@@ -27,7 +27,7 @@ ROBUSTNESS_PACKAGES=(clang libclang-rt-14-dev llvm)
 # runs at 0.1 mm; the what-ifs run sanitized in RunEdits.Batch* at 0.2 mm). The
 # determinism test stays: two small runs of the whole pipeline (level sets, carving, surface,
 # TetGen, evaluation, FE decks) under the sanitizers.
-SANITIZE_EXCLUDE="RunPhantom|RunLabelMap|BatchCommand|BadInput.DirtySurfacesAreMeshed|EditLevelSetsExample|RunEdits.WhatIfs|RunEdits.EditOnACarvedFolder"
+SANITIZE_EXCLUDE="RunPhantom|RunLabelMap|BatchCommand|BadInput.DirtySurfacesAreMeshed|EditLevelSetsExample|RunEdits.WhatIfs|RunEdits.EditOnACarvedFolder|RunImplant"
 
 install_packages() {
   local missing=()
