@@ -39,6 +39,22 @@ struct Local {
     double excl = 0;   ///< w - T: positive where bone is excluded by this tooth
 };
 
+/// The PDL's faces where a bridged gap is wide or the root overlaps the bone (g = T + B; e, w: the
+/// root's erosion and the socket's widening, updated).
+void movePdlForGapOrOverlap(const CarveRules& rules, double g, double gap, double th, double& e, double& w) {
+    // A bridged gap wider than w + boneShiftMax: the PDL moves out to meet the bone where it
+    // has moved boneShiftMax, eroding the root less (and, past that, the PDL thickens).
+    if (gap < 0 && g - w > rules.boneShiftMax) {
+        w = g - rules.boneShiftMax;
+        e = std::max(0.0, th - w);
+    }
+    // The root overlapping the bone by more than boneShiftMax - w (g < 0): the bone surface
+    // moves boneShiftMax, the PDL thins (down to kMinPdlShare of t, past which the bone
+    // moves farther); the root keeps its erosion e.
+    else if (gap < 0 && w - g > rules.boneShiftMax)
+        w = std::max(g + rules.boneShiftMax, kMinPdlShare * th - e);
+}
+
 Local evalLocal(const ToothWork& t, const CarveRules& rules, FloatAcc& T, FloatAcc& X, FloatAcc& B,
                 const openvdb::math::Transform& xf, const Coord& c) {
     Local r;
@@ -62,19 +78,8 @@ Local evalLocal(const ToothWork& t, const CarveRules& rules, FloatAcc& T, FloatA
                             boneKnown(B, X, c - dy) && boneKnown(B, X, c + dz) && boneKnown(B, X, c - dz);
         const double dot = (bKnown && lT > 1e-3 * rules.voxel && lB > 1e-3 * rules.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
         gap = std::max(gap, (dot + rules.facingCos) * rules.gapBridge);
-        // A bridged gap wider than w + boneShiftMax: the PDL moves out to meet the bone where it
-        // has moved boneShiftMax, eroding the root less (and, past that, the PDL thickens). An
-        // implant has no PDL: its gaps become bone, its overlaps are its own.
-        if (t.implant) {
-        } else if (gap < 0 && g - w > rules.boneShiftMax) {
-            w = g - rules.boneShiftMax;
-            e = std::max(0.0, th - w);
-        }
-        // The root overlapping the bone by more than boneShiftMax - w (g < 0): the bone surface
-        // moves boneShiftMax, the PDL thins (down to kMinPdlShare of t, past which the bone
-        // moves farther); the root keeps its erosion e.
-        else if (gap < 0 && w - g > rules.boneShiftMax)
-            w = std::max(g + rules.boneShiftMax, kMinPdlShare * th - e);
+        // An implant has no PDL to move: its gaps become bone, its overlaps are its own.
+        if (!t.implant) movePdlForGapOrOverlap(rules, g, gap, th, e, w);
     }
     const double socket = std::min(b - std::max(e, rules.minCapRise), gap);  // < 0: in the socket of this tooth
     // Exact ties (input bands sampled exactly at T = -e, T = w or on the cap) must land in exactly

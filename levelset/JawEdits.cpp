@@ -1,6 +1,7 @@
 // Implements levelset/JawEdits.h; what it computes, its rules and its contract are documented there.
 #include "levelset/JawEdits.h"
 
+#include "levelset/CarveRules.h"
 #include "levelset/Csg.h"
 #include "levelset/HealSocket.h"
 #include "levelset/ImplantBody.h"
@@ -188,8 +189,7 @@ nlohmann::json apply(EditContext& ctx, const ImplantEdit& e) {
         throw Error(s.str());
     }
     auto implant = implantLevelSet(e, at, tooth);
-    const double pdlMax = std::max(ctx.carve.pdlThicknessMm, ctx.carve.profile ? std::max({ctx.carve.profile->cervical,
-                                   ctx.carve.profile->midRoot, ctx.carve.profile->apical}) : 0.0);
+    const double pdlMax = carve::thicknessRangeMm(ctx.carve).second;
     requireClearOfTeeth(*implant, e.tooth, ctx.levelSets.teeth, pdlMax + uniformVoxelSizeMm(*implant), ctx.where);
     ctx.levelSets.bone = healed;
     ctx.levelSets.teeth[e.tooth] = implant;
