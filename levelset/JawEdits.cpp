@@ -140,7 +140,7 @@ double boneDepthBelowPlatform(const openvdb::FloatGrid& bone, const ImplantEdit&
     const openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> B(
         bone.getConstAccessor(), bone.transform());
     const LongAxis& a = at.axis;
-    const openvdb::Vec3d across = (std::abs(a.axis.x()) < 0.9 ? openvdb::Vec3d(1, 0, 0) : openvdb::Vec3d(0, 1, 0)).cross(a.axis).unit();
+    const openvdb::Vec3d across = a.across();
     const openvdb::Vec3d across2 = a.axis.cross(across);
     const double r = 0.5 * e.diameterMm, step = 0.5 * uniformVoxelSizeMm(bone);
     // From two voxels down: a platform at the crest lies on the bone's surface.

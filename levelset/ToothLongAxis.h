@@ -24,10 +24,13 @@ struct LongAxis {
         const openvdb::Vec3d d = world - origin;
         return (d - axis * d.dot(axis)).length();
     }
+    /// A fixed unit direction across the axis (azimuth 0's reference).
+    openvdb::Vec3d across() const {
+        return (std::abs(axis.x()) < 0.9 ? openvdb::Vec3d(1, 0, 0) : openvdb::Vec3d(0, 1, 0)).cross(axis).unit();
+    }
     /// Angle of a world point around the axis, in [0, 2 pi), from a fixed direction across it.
     double azimuthOf(const openvdb::Vec3d& world) const {
-        const openvdb::Vec3d u =
-            (std::abs(axis.x()) < 0.9 ? openvdb::Vec3d(1, 0, 0) : openvdb::Vec3d(0, 1, 0)).cross(axis).unit();
+        const openvdb::Vec3d u = across();
         const openvdb::Vec3d d = world - origin;
         return std::atan2(d.dot(axis.cross(u)), d.dot(u)) + M_PI;
     }
