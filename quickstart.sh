@@ -77,8 +77,8 @@ case "${1:-}" in
   test)
     install_packages "${TEST_PACKAGES[@]}"
     build
-    ctest --test-dir build -L quick --output-on-failure -j "$(nproc)"
-    ctest --test-dir build -L slow --output-on-failure -j "$(nproc)"
+    ctest --test-dir build -L quick --output-on-failure --timeout 1200 -j "$(nproc)"
+    ctest --test-dir build -L slow --output-on-failure --timeout 1200 -j "$(nproc)"
     ;;
   mandible-test)
     # The whole pipeline on the shared mandible (about 3 minutes on 2 cores), then the tests that check a
@@ -115,7 +115,7 @@ case "${1:-}" in
     install_packages "${TEST_PACKAGES[@]}" "${ROBUSTNESS_PACKAGES[@]}"
     sanitize_build
     ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" UBSAN_OPTIONS=print_stacktrace=1 \
-      ctest --test-dir build-asan -L quick -E "$SANITIZE_EXCLUDE" --output-on-failure -j "$(nproc)"
+      ctest --test-dir build-asan -L quick -E "$SANITIZE_EXCLUDE" --output-on-failure --timeout 1200 -j "$(nproc)"
     bash tests/fuzz/run_fuzzers.sh "${FUZZ_SECONDS:-30}"
     ;;
   *)

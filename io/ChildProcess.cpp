@@ -157,7 +157,21 @@ bool takeBytes(const std::vector<char>& bytes, std::size_t& at, void* data, std:
     return true;
 }
 
-ForkedResult runForked(const std::function<void(ParentPipe&)>& work) {
+ForkedChild::ForkedChild(ForkedChild&& other) noexcept : pid(other.pid), fd(other.fd) {
+    other.pid = -1;
+    other.fd = -1;
+}
+
+ForkedChild::~ForkedChild() {
+    if (pid < 0) return;
+    ::kill(pid, SIGKILL);
+    ::close(fd);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+}
+
+ForkedChild startForked(const std::function<void(ParentPipe&)>& work) {
     int fds[2];
     if (::pipe(fds) != 0) throw Error(std::string("cannot create a pipe for a child process (") + std::strerror(errno) + ")");
     std::fflush(nullptr);
@@ -173,16 +187,30 @@ ForkedResult runForked(const std::function<void(ParentPipe&)>& work) {
         runChild(work, ParentPipe{fds[1]});
     }
     ::close(fds[1]);
+    ForkedChild child;
+    child.pid = pid;
+    child.fd = fds[0];
+    return child;
+}
+
+ForkedResult finishForked(ForkedChild& child) {
     ForkedResult r;
-    r.bytes = readAll(fds[0]);
-    ::close(fds[0]);
+    r.bytes = readAll(child.fd);
+    ::close(child.fd);
     int status = 0;
     struct rusage usage {};
-    while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+    while (::wait4(child.pid, &status, 0, &usage) < 0 && errno == EINTR) {
     }
-    r.exit = childExit(pid, status, usage);
+    r.exit = childExit(child.pid, status, usage);
+    child.pid = -1;
+    child.fd = -1;
     readTrailer(r);
     return r;
+}
+
+ForkedResult runForked(const std::function<void(ParentPipe&)>& work) {
+    ForkedChild child = startForked(work);
+    return finishForked(child);
 }
 
 }  // namespace jawmesh

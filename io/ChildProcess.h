@@ -87,4 +87,23 @@ struct ForkedResult {
 /// a ForkedResult with exit.signal set (and returned false).
 ForkedResult runForked(const std::function<void(ParentPipe&)>& work);
 
+/// runForked in two halves, so that this process can work while the child does: startForked forks
+/// and returns at once, finishForked reads what the child sent and reaps it. A child never
+/// finished is killed and reaped when its ForkedChild goes (the parent threw in between).
+/// Fork only where no other thread of this process may hold a lock the child needs: the
+/// sanitizers' allocator has no fork handler, so a child copied while another thread is inside
+/// malloc waits for that lock forever.
+struct ForkedChild {
+    int pid = -1; ///< -1 once finished
+    int fd = -1;  ///< the parent's end of the pipe
+    ForkedChild() = default;
+    ForkedChild(ForkedChild&& other) noexcept;
+    ForkedChild(const ForkedChild&) = delete;
+    ForkedChild& operator=(const ForkedChild&) = delete;
+    ForkedChild& operator=(ForkedChild&&) = delete;
+    ~ForkedChild();
+};
+ForkedChild startForked(const std::function<void(ParentPipe&)>& work);
+ForkedResult finishForked(ForkedChild& child);
+
 }  // namespace jawmesh

@@ -173,16 +173,17 @@ TetgenMesh runTetgen(const InterfaceComplex& plc, const TetgenRun& run) {
     return raw;
 }
 
-TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, std::uint64_t& childPeakBytes,
-                            bool* couldNotStart) {
-    ForkedResult r;
+ForkedChild startTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run) {
     try {
         // TetGen is serial: the child needs no thread pool.
-        r = runForked([&](ParentPipe& pipe) { sendMesh(pipe, runTetgen(plc, run)); });
+        return startForked([&](ParentPipe& pipe) { sendMesh(pipe, runTetgen(plc, run)); });
     } catch (const Error& e) {
-        if (couldNotStart) *couldNotStart = true;
         throw Error(kTetStageName, "TetGen: " + e.reason());
     }
+}
+
+TetgenMesh finishTetgenInChild(ForkedChild& child, const TetgenRun& run, std::uint64_t& childPeakBytes) {
+    const ForkedResult r = finishForked(child);
     childPeakBytes = std::max(childPeakBytes, r.exit.peakMemoryBytes);
     if (r.exit.signal != 0)
         throw Error(kTetStageName, "TetGen died (signal " + std::to_string(r.exit.signal) + ", " + strsignal(r.exit.signal) +
@@ -190,6 +191,11 @@ TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, s
     if (r.thrown) throw Error(*r.thrown);
     if (!r.returned) throw Error(kTetStageName, "TetGen's child process failed with switches '" + run.switches + "'");
     return receiveMesh(r.bytes);
+}
+
+TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, std::uint64_t& childPeakBytes) {
+    ForkedChild child = startTetgenInChild(plc, run);
+    return finishTetgenInChild(child, run, childPeakBytes);
 }
 
 }  // namespace jawmesh

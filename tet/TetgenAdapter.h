@@ -5,6 +5,7 @@
 // try, and in which order, is tet/Tetrahedralize.cpp's business.
 #pragma once
 
+#include "io/ChildProcess.h"
 #include "io/InterfaceComplex.h"
 #include "io/TetMesh.h"
 
@@ -54,9 +55,13 @@ TetgenMesh runTetgen(const InterfaceComplex& plc, const TetgenRun& run);
 /// in its facet recovery, seen on a locally refined mandible surface) where it should throw, and
 /// an abort must not take the run down. The mesh comes back through a pipe; childPeakBytes is
 /// raised to the child's peak resident memory. Throws what runTetgen throws, and Error when the
-/// child dies or fails; then *couldNotStart (when given) says whether the child was never started
-/// (no pipe or no fork: out of processes or memory), TetGen not run at all.
-TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, std::uint64_t& childPeakBytes,
-                            bool* couldNotStart = nullptr);
+/// child cannot be started, dies or fails.
+TetgenMesh runTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run, std::uint64_t& childPeakBytes);
+
+/// runTetgenInChild in two halves (startForked, finishForked), for a run in this process while the
+/// child's goes on. start throws Error when no child could be started (no pipe or no fork: out of
+/// processes or memory), TetGen not run at all; finish throws what runTetgenInChild throws.
+ForkedChild startTetgenInChild(const InterfaceComplex& plc, const TetgenRun& run);
+TetgenMesh finishTetgenInChild(ForkedChild& child, const TetgenRun& run, std::uint64_t& childPeakBytes);
 
 }  // namespace jawmesh

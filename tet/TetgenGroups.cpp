@@ -4,11 +4,11 @@
 #include "io/Error.h"
 #include "tet/LabelFromSides.h"
 
-#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 namespace jawmesh {
 namespace {
@@ -85,32 +85,34 @@ void appendGroup(const GroupRun& g, TetgenMesh raw, const Groups& groups, int gr
     }
 }
 
-/// Both groups' runs: at once when the task arena has more than one thread, one of them in a child
-/// (file comment), else in turn here; both in children when isolated. A child that cannot be
-/// started (no fork: out of processes or memory) costs only the parallelism.
+/// Both groups' runs: at once when the task arena has more than one thread, group 1 in a child
+/// (file comment) while group 0 runs here, else in turn here; both in children when isolated.
+/// Every child is forked before TetGen runs here, from this thread alone (ForkedChild: a fork
+/// beside a thread inside malloc hangs under the sanitizers). A child that cannot be started (no
+/// fork: out of processes or memory) costs only the parallelism.
 std::vector<TetgenMesh> runGroups(const std::vector<GroupRun>& groups, bool isolated, std::uint64_t& childPeakBytes) {
     const bool parallel = tbb::this_task_arena::max_concurrency() > 1;
     std::vector<TetgenMesh> raw(kGroups);
-    std::vector<std::uint64_t> peak(kGroups, 0);
-    bool childNotStarted = false;
-    const auto runGroup = [&](int g) {
+    std::vector<std::optional<ForkedChild>> children(kGroups);
+    for (int g = 0; g < kGroups; ++g) {
         const GroupRun& G = groups[std::size_t(g)];
-        const bool child = isolated || (parallel && g == 1);
-        raw[std::size_t(g)] = child ? runTetgenInChild(G.complex, G.run, peak[std::size_t(g)], isolated ? nullptr : &childNotStarted)
-                                    : runTetgen(G.complex, G.run);
-    };
-    if (!parallel) {
-        for (int g = 0; g < kGroups; ++g) runGroup(g);
-    } else {
+        if (!parallel) {
+            raw[std::size_t(g)] = isolated ? runTetgenInChild(G.complex, G.run, childPeakBytes) : runTetgen(G.complex, G.run);
+            continue;
+        }
+        if (!isolated && g == 0) continue;
         try {
-            tbb::parallel_invoke([&] { runGroup(0); }, [&] { runGroup(1); });
+            children[std::size_t(g)].emplace(startTetgenInChild(G.complex, G.run));
         } catch (const Error&) {
-            if (!childNotStarted) throw;
-            if (raw[0].mesh.tets.empty()) raw[0] = runTetgen(groups[0].complex, groups[0].run);
-            raw[1] = runTetgen(groups[1].complex, groups[1].run);
+            if (isolated) throw;
         }
     }
-    for (std::uint64_t p : peak) childPeakBytes = std::max(childPeakBytes, p);
+    if (!parallel) return raw;
+    for (int g = 0; g < kGroups; ++g) {
+        const GroupRun& G = groups[std::size_t(g)];
+        auto& child = children[std::size_t(g)];
+        raw[std::size_t(g)] = child ? finishTetgenInChild(*child, G.run, childPeakBytes) : runTetgen(G.complex, G.run);
+    }
     return raw;
 }
 

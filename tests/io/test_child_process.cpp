@@ -8,6 +8,8 @@
 
 #include <csignal>
 #include <numeric>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 namespace jawmesh {
@@ -50,6 +52,32 @@ TEST(ChildProcess, ForkedFunctionSendsItsBytesItsErrorOrItsDeath) {
     EXPECT_FALSE(died.returned);
     EXPECT_FALSE(died.thrown);
     EXPECT_NE(describeExit(died.exit).find("signal 9"), std::string::npos);
+}
+
+TEST(ChildProcess, StartedChildWorksWhileTheParentDoesAndAnUnfinishedOneIsKilled) {
+    std::vector<std::int64_t> sent(300000);  // more than a pipe holds: the child waits until it is read
+    std::iota(sent.begin(), sent.end(), -5);
+    ForkedChild child = startForked([&](ParentPipe& pipe) { sendToParent(pipe, sent.data(), sent.size()); });
+    ASSERT_GT(child.pid, 0);
+    const std::int64_t parentsOwn = std::accumulate(sent.begin(), sent.end(), std::int64_t(0));
+    const ForkedResult r = finishForked(child);
+    EXPECT_EQ(child.pid, -1);
+    EXPECT_TRUE(r.returned);
+    std::vector<std::int64_t> received(sent.size());
+    std::size_t at = 0;
+    ASSERT_TRUE(takeFromChild(r.bytes, at, received.data(), received.size()));
+    EXPECT_EQ(std::accumulate(received.begin(), received.end(), std::int64_t(0)), parentsOwn);
+
+    int pid = 0;
+    {
+        ForkedChild forever = startForked([](ParentPipe&) {
+            for (;;) ::pause();
+        });
+        pid = forever.pid;
+        ForkedChild moved(std::move(forever));
+        EXPECT_EQ(forever.pid, -1);
+    }  // dropped unfinished: killed and reaped
+    EXPECT_EQ(::waitpid(pid, nullptr, WNOHANG), -1);  // no such child left, not even a zombie
 }
 
 }  // namespace
