@@ -1,7 +1,7 @@
 // Horizontal bone loss (issue #24): the alveolar crest around chosen teeth lowered by a depth d
 // along each tooth's long axis a. The bone is intersected with a copy of itself moved down by the
-// depth, B'(x) = max(B(x), F(x + s(x))) (outside both, the distance to their crossing edge): every upward-facing part of the crest drops by d exactly
-// and walls along the axis stay. F is the bone with each listed tooth's socket filled (the tooth
+// depth, B'(x) = max(B(x), F(x + s(x))) (outside both, the distance to their crossing edge): every
+// upward-facing part of the crest drops by d exactly and walls along the axis stay. F is the bone with each listed tooth's socket filled (the tooth
 // dilated by the widest gap carving bridges, below the lowest point of its old crest), so the
 // socket's walls and floor, which face up where a root tapers, do not widen or deepen. The shift
 // s(x) = d w a, along the axis of the nearest listed root, tapers w to none: towards the teeth

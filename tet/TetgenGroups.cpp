@@ -91,23 +91,23 @@ void appendGroup(const GroupRun& g, TetgenMesh raw, const Groups& groups, int gr
 /// beside a thread inside malloc hangs under the sanitizers). A child that cannot be started (no
 /// fork: out of processes or memory) costs only the parallelism.
 std::vector<TetgenMesh> runGroups(const std::vector<GroupRun>& groups, bool isolated, std::uint64_t& childPeakBytes) {
-    const bool parallel = tbb::this_task_arena::max_concurrency() > 1;
     std::vector<TetgenMesh> raw(kGroups);
-    std::vector<std::optional<ForkedChild>> children(kGroups);
-    for (int g = 0; g < kGroups; ++g) {
-        const GroupRun& G = groups[std::size_t(g)];
-        if (!parallel) {
+    if (tbb::this_task_arena::max_concurrency() <= 1) {
+        for (int g = 0; g < kGroups; ++g) {
+            const GroupRun& G = groups[std::size_t(g)];
             raw[std::size_t(g)] = isolated ? runTetgenInChild(G.complex, G.run, childPeakBytes) : runTetgen(G.complex, G.run);
-            continue;
         }
-        if (!isolated && g == 0) continue;
+        return raw;
+    }
+    std::vector<std::optional<ForkedChild>> children(kGroups);
+    for (int g = isolated ? 0 : 1; g < kGroups; ++g) {
+        const GroupRun& G = groups[std::size_t(g)];
         try {
             children[std::size_t(g)].emplace(startTetgenInChild(G.complex, G.run));
         } catch (const Error&) {
-            if (isolated) throw;
+            if (isolated) throw;  // else group g runs here after group 0
         }
     }
-    if (!parallel) return raw;
     for (int g = 0; g < kGroups; ++g) {
         const GroupRun& G = groups[std::size_t(g)];
         auto& child = children[std::size_t(g)];
