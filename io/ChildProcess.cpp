@@ -157,6 +157,19 @@ bool takeBytes(const std::vector<char>& bytes, std::size_t& at, void* data, std:
     return true;
 }
 
+namespace {
+
+/// Waits for child `pid` to end and says how it ended.
+ChildExit reap(pid_t pid) {
+    int status = 0;
+    struct rusage usage {};
+    while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+    }
+    return childExit(pid, status, usage);
+}
+
+}  // namespace
+
 ForkedChild::ForkedChild(ForkedChild&& other) noexcept : pid(other.pid), fd(other.fd) {
     other.pid = -1;
     other.fd = -1;
@@ -166,9 +179,7 @@ ForkedChild::~ForkedChild() {
     if (pid < 0) return;
     ::kill(pid, SIGKILL);
     ::close(fd);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
+    reap(pid);
 }
 
 ForkedChild startForked(const std::function<void(ParentPipe&)>& work) {
@@ -197,11 +208,7 @@ ForkedResult finishForked(ForkedChild& child) {
     ForkedResult r;
     r.bytes = readAll(child.fd);
     ::close(child.fd);
-    int status = 0;
-    struct rusage usage {};
-    while (::wait4(child.pid, &status, 0, &usage) < 0 && errno == EINTR) {
-    }
-    r.exit = childExit(child.pid, status, usage);
+    r.exit = reap(child.pid);
     child.pid = -1;
     child.fd = -1;
     readTrailer(r);

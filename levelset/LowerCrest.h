@@ -1,17 +1,17 @@
 // Horizontal bone loss (issue #24): the alveolar crest around chosen teeth lowered by a depth d
 // along each tooth's long axis a. The bone is intersected with a copy of itself moved down by the
 // depth, B'(x) = max(B(x), F(x + s(x))) (outside both, the distance to their crossing edge): every
-// upward-facing part of the crest drops by d exactly and walls along the axis stay. F is the bone with each listed tooth's socket filled (the tooth
-// dilated by the widest gap carving bridges, below the lowest point of its old crest), so the
-// socket's walls and floor, which face up where a root tapers, do not widen or deepen. The shift
-// s(x) = d w a, along the axis of the nearest listed root, tapers w to none: towards the teeth
-// that are not listed, from full where x is as near a listed root as an unlisted one to none
-// kLossTaperMm nearer the unlisted one (the whole crest around every listed tooth drops by d; the
-// slope lies in the septum beside it); beyond kLossReachMm from the listed roots; and downwards
-// over kLossRampDepths * d (less on a short root) to a floor under which nothing moves (other upward-facing bone, e.g. a
-// lingual ridge, drops by less the deeper it is). Distances to a root are taken from its axis less
-// its radius at the crest in that direction (AlveolarCrest.h). The carve that follows caps each
-// PDL at the new crest.
+// upward-facing part of the crest drops by d exactly and walls along the axis stay. F is the bone
+// with each listed tooth's socket filled (the tooth dilated by the widest gap carving bridges,
+// below the lowest point of its old crest), so the socket's walls and floor, which face up where a
+// root tapers, do not widen or deepen. The shift s(x) = d w a, along the axis of the nearest listed
+// root, tapers w to none: towards the teeth that are not listed, from full where x is as near a
+// listed root as an unlisted one to none kLossTaperMm nearer the unlisted one (the whole crest
+// around every listed tooth drops by d; the slope lies in the septum beside it); beyond
+// kLossReachMm from the listed roots; and downwards over kLossRampDepths * d (less on a short root)
+// to a floor under which nothing moves (other upward-facing bone, e.g. a lingual ridge, drops by
+// less the deeper it is). Distances to a root are taken from its axis less its radius at the crest
+// in that direction (AlveolarCrest.h). The carve that follows caps each PDL at the new crest.
 #pragma once
 
 #include "levelset/ToothLongAxis.h"
