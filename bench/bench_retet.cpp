@@ -5,7 +5,9 @@
 // surface a failed run keeps in failed_surface/) is read as it is, with its own seeds.
 // Usage: bench_retet <mesh.msh | surface.poly> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
 // max (edge mm), O (optimisation level), repair (attempts), improve (0/1), check (0: no intersection check first), Y (0: TetGen may split interface triangles),
-// refine (rounds of local refinement, tet/RefineComplex.h), holes (1: only fill the surface's holes and list them).
+// refine (rounds of local refinement, tet/RefineComplex.h), holes (1: only fill the surface's holes and list them),
+// trials (the sliver improver's lookahead trials in all), push, outerpush (mm an interface node inside the mesh / on its outer boundary may be pushed off a thin spot), lost (1: repair the holes, run TetGen once with the first
+// rung's switches and list the input triangles that are no tet face).
 // BENCH_WRITE=<file.msh> writes the mesh.
 #include "filters/FillSurfaceHoles.h"
 #include "filters/OpenRegionEdges.h"
@@ -15,15 +17,77 @@
 #include "io/PolyReader.h"
 #include "tet/ElementQuality.h"
 #include "tet/RegionSurfaces.h"
+#include "tet/RepairHoles.h"
+#include "tet/TetgenAdapter.h"
+#include "tet/TetgenGroups.h"
+#include "tet/LabelFromSides.h"
+#include "io/Error.h"
 #include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <map>
+#include <set>
 #include <string>
 
+
+namespace {
+
+/// lost=1: the input triangles that are no face of any tet of one TetGen run (the first rung's
+/// switches, one run, no groups), after the tet stage's hole repair.
+int listLostTriangles(const jawmesh::InterfaceComplex& input, const jawmesh::TetOptions& o) {
+    std::vector<double> bounds;
+    for (const auto& seed : input.seeds) {
+        const auto kind = jawmesh::labelKind(seed.label);
+        const double edge = kind == jawmesh::LabelKind::Bone ? o.boneEdgeMm : kind == jawmesh::LabelKind::Pdl ? o.pdlEdgeMm : o.toothEdgeMm;
+        bounds.push_back(jawmesh::tetVolumeForEdge(edge));
+    }
+    jawmesh::TetStats st;
+    jawmesh::InterfaceComplex repaired;
+    const jawmesh::InterfaceComplex& c = jawmesh::repairHoles(input, repaired, bounds, st);
+    std::printf("repaired: %zu filled, %zu left, %zu triangles\n", st.holeRepair.filled.size(), st.holeRepair.left.size(), c.surface.triangles.size());
+    const std::string sw = "pzQAq" + jawmesh::tetgenNumber(o.radiusEdgeRatio) + "/" + jawmesh::tetgenNumber(std::max(0.0, o.tetgenMinDihedralDeg)) + "aYMO3/7";
+    jawmesh::TetgenMesh raw = jawmesh::runTetgen(c, {sw, jawmesh::kTetgenDefaultOptMaxDihedralDeg, bounds});
+    try {
+        jawmesh::TetgenMesh labeled = raw;
+        jawmesh::labelFromSides(c, labeled);
+        std::printf("one run: labeled from the sides\n");
+    } catch (const jawmesh::Error& e) { std::printf("one run: %s\n", e.what()); }
+    try {
+        std::uint64_t peak = 0;
+        jawmesh::runTetgenInGroups(c, {sw, jawmesh::kTetgenDefaultOptMaxDihedralDeg, bounds}, true, false, peak);
+        std::printf("two groups: labeled from the sides\n");
+    } catch (const jawmesh::Error& e) { std::printf("two groups: %s\n", e.what()); }
+    std::set<std::array<std::int32_t, 3>> faces;
+    for (const auto& e : raw.mesh.tets)
+        for (int k = 0; k < 4; ++k) {
+            std::array<std::int32_t, 3> f{e[std::size_t((k + 1) % 4)], e[std::size_t((k + 2) % 4)], e[std::size_t((k + 3) % 4)]};
+            std::sort(f.begin(), f.end());
+            faces.insert(f);
+        }
+    std::size_t lost = 0;
+    for (std::size_t t = 0; t < c.surface.triangles.size(); ++t) {
+        std::array<std::int32_t, 3> f = c.surface.triangles[t];
+        std::sort(f.begin(), f.end());
+        if (faces.count(f)) continue;
+        ++lost;
+        const auto& v = c.surface.vertices;
+        const jawmesh::Vec3 &a = v[std::size_t(f[0])], &b = v[std::size_t(f[1])], &d = v[std::size_t(f[2])];
+        const double minEdge = std::min({(a - b).norm(), (b - d).norm(), (d - a).norm()});
+        std::printf("lost triangle %zu %s/%s at (%.4f, %.4f, %.4f), shortest edge %.2e mm, area %.2e mm^2, split by TetGen: %s\n", t,
+                    jawmesh::labelName(c.sides[t][0]).c_str(), jawmesh::labelName(c.sides[t][1]).c_str(), (a.x() + b.x() + d.x()) / 3,
+                    (a.y() + b.y() + d.y()) / 3, (a.z() + b.z() + d.z()) / 3, minEdge, 0.5 * (b - a).cross(d - a).norm(),
+                    std::binary_search(raw.facets.begin(), raw.facets.end(), f) ? "no" : "yes or dropped");
+    }
+    std::printf("%zu of %zu input triangles are no tet face; %zu nodes (%zu input points), %zu tets\n", lost, c.surface.triangles.size(),
+                raw.mesh.nodes.size(), c.surface.vertices.size(), raw.mesh.tets.size());
+    return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 2) {
@@ -32,6 +96,7 @@ int main(int argc, char** argv) {
     }
     jawmesh::TetOptions o;
     bool holesOnly = false;
+    bool lostOnly = false;
     o.boneEdgeMm = 2.0;
     o.toothEdgeMm = 1.0;
     o.pdlEdgeMm = 0.3;
@@ -54,6 +119,10 @@ int main(int argc, char** argv) {
         else if (k == "Y") o.preserveBoundary = v != 0;
         else if (k == "refine") o.refineRounds = int(v);
         else if (k == "holes") holesOnly = v != 0;
+        else if (k == "trials") o.slivers.lookaheadTrials = std::size_t(v);
+        else if (k == "lost") lostOnly = v != 0;
+        else if (k == "push") o.slivers.interfacePushMm = v;
+        else if (k == "outerpush") o.slivers.outerPushMm = v;
         else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
     }
     const std::string path = argv[1];
@@ -80,6 +149,7 @@ int main(int argc, char** argv) {
                     jawmesh::openRegionEdges(c).size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - h0).count());
         return 0;
     }
+    if (lostOnly) return listLostTriangles(c, o);
     jawmesh::TetStats s;
     const auto t0 = std::chrono::steady_clock::now();
     const jawmesh::TetMesh out = jawmesh::tetrahedralize(c, o, jawmesh::noProgress(), &s);
@@ -92,6 +162,9 @@ int main(int argc, char** argv) {
                 argv[1], out.nodes.size(), out.tets.size(), perKind["bone"], perKind["tooth"], perKind["pdl"], s.minDihedralDeg,
                 s.belowMinDihedral, o.slivers.targetMinDihedralDeg, s.slivers.badBefore, s.switches.c_str(), s.attempts, s.refineRounds, s.refinedEdges, sec,
                 r.violationCount());
+    std::printf("kept run's improver: %zu under the target before, %zu after, %zu lookahead trials%s, %zu pushes (%zu outer), %.1f s\n", s.slivers.badBefore,
+                s.slivers.badAfter, s.slivers.lookaheadTrials, s.slivers.lookaheadBudgetSpent ? " (budget spent)" : "",
+                s.slivers.interfacePushes, s.slivers.outerPushes, s.slivers.seconds);
     const jawmesh::HoleFillStats& h = s.holeRepair;
     if (!h.filled.empty())
         std::printf("hole repair: %zu holes closed (%zu by a centroid fan), %zu triangles added, %zu removed (lids), largest %.2f mm\n",

@@ -240,29 +240,42 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
             }
         };
         PhaseProgress lookahead(stage, progress, 0.4, 0.8);
+        imp.trialLimit = options.lookaheadTrials;
         deepen(1, options.lookaheadDepth, lookahead);
+        st.lookaheadBudgetSpent = imp.trialsMade >= imp.trialLimit;
         // The last resort, then the usual operations again around what it moved.
         InterfacePushes pushes;
-        if (options.interfacePushMm > 0 && !bad.empty()) {
-            PhaseProgress pushing(stage, progress, 0.8, 0.9);
+        const auto push = [&](double maxMm, const std::vector<Tri>* outerFaces, PhaseProgress& pushing) {
             Acceptance accept = Acceptance::improving(imp.target);
             bool changed = pushing.pass(bad, [&](std::int32_t t) {
-                return pushInterfaceNode(editor, t, options.interfacePushMm, accept, pushes, st);
+                return pushInterfaceNode(editor, t, maxMm, accept, pushes, st, outerFaces);
             });
             for (int pass = 0; changed && pass < options.maxPasses; ++pass) {
                 ++st.passes;
                 changed = pushing.pass(badTets(imp), climb);
             }
             bad = badTets(imp);
+        };
+        if (options.interfacePushMm > 0 && !bad.empty()) {
+            PhaseProgress pushing(stage, progress, 0.8, 0.9);
+            push(options.interfacePushMm, nullptr, pushing);
         }
         // The deep lookahead for the last few, within its count of trials. Straight at its depth:
         // the levels between cost more trials than they mend (SliverOptions::deepLookaheadDepth).
-        PhaseProgress deeper(stage, progress, 0.9, 1.0);
+        PhaseProgress deeper(stage, progress, 0.9, 0.95);
         if (options.lookaheadDepth > 0 && options.deepLookaheadDepth > options.lookaheadDepth &&
             bad.size() <= options.deepLookaheadTets) {
             imp.trialLimit = imp.trialsMade + options.deepLookaheadTrials;
             deepen(options.deepLookaheadDepth, options.deepLookaheadDepth, deeper);
         }
+        if (options.outerPushMm > 0 && !bad.empty()) {
+            PhaseProgress outerPushing(stage, progress, 0.95, 1.0);
+            const std::size_t before = st.interfacePushes;
+            const std::vector<Tri> outer = outerBoundaryFaces(editor);
+            push(options.outerPushMm, &outer, outerPushing);
+            st.outerPushes += st.interfacePushes - before;
+        }
+        st.lookaheadTrials = imp.trialsMade;
         editor.finish();
         // Every operation re-triangulates a cavity of one region (or splits an interface in
         // place; pushes move it by what they recorded): a region whose volume changed otherwise
@@ -292,7 +305,10 @@ nlohmann::json toJson(const SliverStats& sl) {
             {"interface_insertions", sl.interfaceInsertions},
             {"edge_removals", sl.edgeRemovals},
             {"lookaheads", sl.lookaheads},
+            {"lookahead_trials", sl.lookaheadTrials},
+            {"lookahead_budget_spent", sl.lookaheadBudgetSpent},
             {"interface_pushes", sl.interfacePushes},
+            {"outer_pushes", sl.outerPushes},
             {"largest_push_mm", sl.largestPushMm},
             {"passes", sl.passes},
             {"seconds", sl.seconds}};

@@ -35,12 +35,23 @@ struct SliverOptions {
     /// Trials the deep lookahead may make in all, nested ones included (a count, not a clock, so
     /// the result does not depend on speed).
     std::size_t deepLookaheadTrials = 500;
+    /// Trials the lookahead of depth 1..lookaheadDepth may make in all (a count, so deterministic).
+    /// A surface with thousands of tets the hill climbing cannot mend (folds of a damaged input)
+    /// would otherwise keep the stage busy for tens of minutes; the clean shared mandible makes
+    /// a few hundred (docs/BENCHMARKS.md, session 28).
+    std::size_t lookaheadTrials = 5000;
     /// How far the last resort may push an interface node (one inside the mesh, not on its outer
     /// boundary) away from the face opposite it in a tet still under the target, mm (0: never).
     /// The surface moves by at most this much; each node is pushed once at most. For lips a few
     /// thousandths of a millimetre thick that the extraction itself left, which no re-triangulation
     /// fills with good tets.
     double interfacePushMm = 0.005;
+    /// The same for a node on the mesh's outer boundary (against the outside: a crown, the bone's
+    /// outer surface), mm (0: never), tried only after everything else, and kept only when the
+    /// outer surface stays free of self-intersections (tet/SliverPush.h). Issue #27: the slivers
+    /// the overlapping-shells surface kept sat on bone and crown lips against the outside, where
+    /// the pushes above may not go.
+    double outerPushMm = 0.02;
 };
 
 struct SliverStats {
@@ -57,7 +68,10 @@ struct SliverStats {
     std::size_t cavityStars = 0; ///< a tet and its same-region neighbours starred from a new node
     std::size_t interfaceInsertions = 0; ///< nodes inserted on an interface triangle or edge (cavities on every side)
     std::size_t lookaheads = 0; ///< operations kept by the lookahead (with what followed them)
-    std::size_t interfacePushes = 0; ///< interface nodes pushed off a thin spot (the last resort)
+    std::size_t lookaheadTrials = 0;   ///< operations the lookahead tried (kept or undone)
+    bool lookaheadBudgetSpent = false; ///< the lookahead stopped at SliverOptions::lookaheadTrials
+    std::size_t interfacePushes = 0; ///< interface nodes pushed off a thin spot (the last resort), outer ones included
+    std::size_t outerPushes = 0;     ///< of those, nodes on the outer boundary
     double largestPushMm = 0;   ///< the longest of those pushes, mm
     int passes = 0;
     double seconds = 0;
@@ -95,7 +109,8 @@ nlohmann::json toJson(const SliverStats& stats);
 /// Last resort (tet/SliverPush.h): a tet still under the target at an intrinsically thin spot of a
 /// region (a lip a few thousandths of a millimetre thick, which no re-triangulation fills with good
 /// tets) may have an interface node pushed away from its opposite face, then the hill climbing runs
-/// again, then deeper lookaheads when few bad tets are left.
+/// again, then deeper lookaheads when few bad tets are left; what is still left may then have a
+/// node of the outer boundary pushed (options.outerPushMm), and the hill climbing runs again.
 /// Deterministic: tets are visited by score, ties by index; what runs in parallel (scoring) is
 /// compared in a fixed order, so the result does not depend on the thread count.
 ///

@@ -1,6 +1,7 @@
 // The bounded push of an interface node off a thin spot (tet/SliverPush.h).
 #include "tet/SliverPush.h"
 
+#include "filters/SelfIntersections.h"
 #include "tet/SliverSmooth.h"
 
 #include <algorithm>
@@ -9,9 +10,47 @@
 #include <vector>
 
 namespace jawmesh {
+namespace {
+
+/// Whether the outer faces around node v, with v at p, meet another outer face (exact test; faces
+/// that share a node are tested too, trianglesIntersect knows what they share).
+bool outerFacesMeet(const TetMeshEditor& mesh, const std::vector<Tri>& outerFaces, std::int32_t v, const Vec3& p) {
+    const auto at = [&](std::int32_t w) -> const Vec3& { return w == v ? p : mesh.node(w); };
+    std::vector<std::size_t> around;
+    for (std::size_t f = 0; f < outerFaces.size(); ++f)
+        if (std::find(outerFaces[f].begin(), outerFaces[f].end(), v) != outerFaces[f].end()) around.push_back(f);
+    for (const std::size_t f : around) {
+        const Tri& a = outerFaces[f];
+        const Vec3 pa[3] = {at(a[0]), at(a[1]), at(a[2])};
+        const Vec3 lo = pa[0].cwiseMin(pa[1]).cwiseMin(pa[2]), hi = pa[0].cwiseMax(pa[1]).cwiseMax(pa[2]);
+        for (std::size_t g = 0; g < outerFaces.size(); ++g) {
+            if (g == f) continue;
+            const Tri& b = outerFaces[g];
+            const Vec3 pb[3] = {at(b[0]), at(b[1]), at(b[2])};
+            const Vec3 blo = pb[0].cwiseMin(pb[1]).cwiseMin(pb[2]), bhi = pb[0].cwiseMax(pb[1]).cwiseMax(pb[2]);
+            if ((blo.array() > hi.array()).any() || (bhi.array() < lo.array()).any()) continue;
+            if (trianglesIntersect(pa, a, pb, b)) return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+std::vector<Tri> outerBoundaryFaces(const TetMeshEditor& mesh) {
+    std::vector<Tri> faces;
+    for (std::size_t t = 0; t < mesh.tetCount(); ++t) {
+        if (!mesh.alive(std::int32_t(t))) continue;
+        for (int k = 0; k < 4; ++k) {
+            std::int32_t f[3];
+            if (mesh.acrossFace(std::int32_t(t), k, f) < 0) faces.push_back({f[0], f[1], f[2]});
+        }
+    }
+    return faces;
+}
 
 bool pushInterfaceNode(TetMeshEditor& mesh, std::int32_t t, double maxMm, Acceptance& accept, InterfacePushes& pushes,
-                       SliverStats& stats) {
+                       SliverStats& stats, const std::vector<Tri>* outerFaces) {
     if (!mesh.alive(t) || mesh.score(t) >= accept.target()) return false;
     const Tet e = mesh.tet(t);
     const auto P = [&](std::int32_t v) -> const Vec3& { return mesh.node(v); };
@@ -27,15 +66,16 @@ bool pushInterfaceNode(TetMeshEditor& mesh, std::int32_t t, double maxMm, Accept
     std::sort(order.begin(), order.end());
     for (const auto& [height, k] : order) {
         const std::int32_t v = e[std::size_t(k)];
-        if (!mesh.fixed(v) || pushes.pushed.count(v) || mesh.onMeshBoundary(v)) continue;
+        if (!mesh.fixed(v) || pushes.pushed.count(v) || mesh.onMeshBoundary(v) != (outerFaces != nullptr)) continue;
         std::vector<Tet> tets;
         for (auto s : mesh.star(v)) tets.push_back(mesh.tet(s));
         Objective best = objectiveWith(mesh.nodes(), tets, v, P(v), accept.target());
         double bestStep = 0;
         for (int i = 1; i <= 8; ++i) {
             const double step = maxMm * i / 8.0;
-            const Objective o = objectiveWith(mesh.nodes(), tets, v, P(v) + step * away[std::size_t(k)], accept.target());
-            if (accept(o, best)) {
+            const Vec3 to = P(v) + step * away[std::size_t(k)];
+            const Objective o = objectiveWith(mesh.nodes(), tets, v, to, accept.target());
+            if (accept(o, best) && !(outerFaces && outerFacesMeet(mesh, *outerFaces, v, to))) {
                 best = o;
                 bestStep = step;
             }

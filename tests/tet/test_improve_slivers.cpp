@@ -3,6 +3,7 @@
 // volume of either region.
 #include "GridTetMesh.h"
 #include "TetTestComplexes.h"
+#include "filters/SelfIntersections.h"
 #include "tet/ElementQuality.h"
 #include "tet/ImproveSlivers.h"
 #include "tet/TetFaceAdjacency.h"
@@ -114,7 +115,7 @@ TEST(ImproveSlivers, RepairsFlatTetsWithoutTouchingInterfacesOrVolumes) {
 
     SliverStats st;
     SliverOptions noPush;
-    noPush.interfacePushMm = 0;  // interfaces must stay where they are (the pushes: their own test)
+    noPush.interfacePushMm = noPush.outerPushMm = 0;  // interfaces must stay where they are (the pushes: their own test)
     improveSlivers(m, noPush, &st);
     const QualityStats q1 = measureQuality(m, 10.0);
     std::printf("below 10 deg: %zu -> %zu, min dihedral %.2f -> %.2f deg (smoothed %zu, 2-3 %zu, 3-2 %zu, splits %zu+%zu)\n",
@@ -156,6 +157,7 @@ TEST(ImproveSlivers, InterfaceInsertionsMendSliversBetweenTwoCloseInterfaces) {
     noInsertions.interfaceInsertions = false;
     noInsertions.lookaheadDepth = insertions.lookaheadDepth = 0;
     noInsertions.interfacePushMm = insertions.interfacePushMm = 0;
+    noInsertions.outerPushMm = insertions.outerPushMm = 0;
     SliverStats s0, s1;
     improveSlivers(inside, noInsertions, &s0);
     improveSlivers(across, insertions, &s1);
@@ -180,6 +182,7 @@ TEST(ImproveSlivers, LookaheadMendsWhatNoSingleOperationCanAndUndoesWhatDoesNotH
     SliverOptions noLookahead, lookahead;
     noLookahead.lookaheadDepth = 0;
     noLookahead.interfacePushMm = lookahead.interfacePushMm = 0;
+    noLookahead.outerPushMm = lookahead.outerPushMm = 0;
     SliverStats s0, s1;
     improveSlivers(climbed, noLookahead, &s0);
     improveSlivers(looked, lookahead, &s1);
@@ -226,7 +229,7 @@ TEST(ImproveSlivers, LastResortPushesAnInterfaceNodeOffAThinLipWithinItsBound) {
     ASSERT_LT(measureQuality(lip, 10.0).minDihedralDeg, 10.0);
     TetMesh kept = lip, pushed = lip;
     SliverOptions off;
-    off.interfacePushMm = 0;
+    off.interfacePushMm = off.outerPushMm = 0;
     SliverStats s0, s1;
     improveSlivers(kept, off, &s0);
     improveSlivers(pushed, SliverOptions{}, &s1);
@@ -305,3 +308,73 @@ TEST(ImproveSlivers, ReportsProgressWithoutChangingTheResultAndStopsWhenCancelle
 
 }  // namespace
 }  // namespace jawmesh
+
+/// One flat tooth tet on the outside, `liftMm` high over a boundary triangle of edge 0.05 mm (every
+/// node on the outer boundary), and, when `roofGapMm` > 0, a second tooth tet whose bottom face
+/// lies that far above the flat tet's apex (a surface across a narrow gap of outside).
+TetMesh outerLip(double liftMm, double roofGapMm) {
+    const double s = 0.05;
+    const Vec3 a(0, 0, 0), b(s, 0, 0), c(s / 2, s * std::sqrt(3.0) / 2, 0);
+    const Vec3 g = (a + b + c) / 3.0;
+    TetMesh m;
+    m.nodes = {a, b, c, g + Vec3(0, 0, liftMm)};
+    m.tets = {{0, 1, 2, 3}};
+    m.labels = {kTooth};
+    if (roofGapMm > 0) {
+        const double z = liftMm + roofGapMm;
+        for (const Vec3& p : {Vec3(-s, -s, z), Vec3(2 * s, -s, z), Vec3(s / 2, 2 * s, z), Vec3(s / 2, 0, z + s)}) m.nodes.push_back(p);
+        m.tets.push_back({4, 5, 6, 7});
+        m.labels.push_back(kTooth);
+    }
+    for (auto& e : m.tets)
+        if (volume(TetMesh{m.nodes, {e}, {kTooth}}, 0) < 0) std::swap(e[2], e[3]);
+    return m;
+}
+
+/// The outer boundary's faces of a mesh as a surface (for the exact self-intersection check).
+SurfaceMesh outerSurface(const TetMesh& m) {
+    SurfaceMesh s;
+    s.vertices = m.nodes;
+    std::map<std::array<std::int32_t, 3>, int> count;
+    for (const Tet& e : m.tets)
+        for (int k = 0; k < 4; ++k) {
+            std::array<std::int32_t, 3> f{e[std::size_t((k + 1) % 4)], e[std::size_t((k + 2) % 4)], e[std::size_t((k + 3) % 4)]};
+            std::sort(f.begin(), f.end());
+            ++count[f];
+        }
+    for (const auto& [f, n] : count)
+        if (n == 1) s.triangles.push_back(f);
+    return s;
+}
+
+TEST(ImproveSlivers, LastResortPushesAnOuterNodeOnlyWhereTheOuterSurfaceStaysFree) {
+    // A crown lip 0.002 mm thick against the outside: its one tet is 7.9 degrees, and every node is
+    // on the outer boundary, so only the outer push mends it.
+    const TetMesh lip = outerLip(0.002, 0);
+    ASSERT_LT(measureQuality(lip, 10.0).minDihedralDeg, 10.0);
+    TetMesh kept = lip, pushed = lip;
+    SliverOptions off;
+    off.outerPushMm = 0;
+    SliverStats s0, s1;
+    improveSlivers(kept, off, &s0);
+    improveSlivers(pushed, SliverOptions{}, &s1);
+    std::printf("outer lip: %zu under 10 deg without outer pushes (%zu lookahead trials, %.2f s); %zu with %zu push of %.4f mm (%.2f s)\n",
+                s0.badAfter, s0.lookaheadTrials, s0.seconds, s1.badAfter, s1.outerPushes, s1.largestPushMm, s1.seconds);
+    EXPECT_GT(s0.badAfter, 0u) << "nothing but an outer push mends the lip";
+    EXPECT_EQ(s1.badAfter, 0u);
+    EXPECT_EQ(s1.outerPushes, 1u);
+    EXPECT_LE(s1.largestPushMm, SliverOptions{}.outerPushMm);
+    EXPECT_NEAR((pushed.nodes[3] - lip.nodes[3]).z(), s1.largestPushMm, 1e-12);
+    EXPECT_TRUE(validateTetMesh(pushed, {}).valid());
+
+    // The same lip under another tooth's face 0.001 mm above its apex: the push may not carry the
+    // apex through that face (the outer surface would intersect itself).
+    TetMesh roofed = outerLip(0.002, 0.001);
+    SliverStats s2;
+    improveSlivers(roofed, SliverOptions{}, &s2);
+    std::printf("roofed lip: %zu under 10 deg, %zu outer pushes, %zu lookahead trials, %.2f s\n", s2.badAfter, s2.outerPushes,
+                s2.lookaheadTrials, s2.seconds);
+    EXPECT_TRUE(findSelfIntersections(outerSurface(roofed)).pairs.empty());
+    EXPECT_LT(roofed.nodes[3].z(), 0.003);
+    EXPECT_TRUE(validateTetMesh(roofed, {}).valid());
+}

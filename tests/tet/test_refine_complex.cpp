@@ -68,7 +68,7 @@ TEST(RefineComplex, RoundsLeaveFewerBadTetsOnAThinPdlWithTheSameSurface) {
     o.repairAttempts = 0;
     o.refineRounds = 0;
     o.slivers.lookaheadDepth = 0;  // the rounds on their own (and the lookahead takes minutes here)
-    o.slivers.interfacePushMm = 0; // the surface must stay where it is
+    o.slivers.interfacePushMm = o.slivers.outerPushMm = 0; // the surface must stay where it is
     const InterfaceComplex plc = test::thinPdlComplex(0.04, 2);
     TetStats plain, refined;
     const TetMesh a = tetrahedralize(plc, o, noProgress(), &plain);
