@@ -126,6 +126,7 @@ nlohmann::json runOptionsToJson(const RunOptions& options) {
     j["surface_adaptive_levels"] = o.extract.adaptive.maxLevel;
     j["surface_layer_gap_voxels"] = o.extract.adaptive.layerGapVoxels;
     j["tet_refine_rounds"] = o.tet.refineRounds;
+    j["tet_lookahead_trials"] = o.tet.slivers.lookaheadTrials;
     j["write_levelsets"] = o.writeLevelSets;
     j["from_vdb"] = o.fromVdb;
     if (o.carve.profile)
@@ -159,6 +160,9 @@ void applyRunConfigText(const std::string& text, const std::string& path, RunOpt
         readWholeKey(j, path, "surface_adaptive_levels", 0, 5, o.extract.adaptive.maxLevel);
         readWholeKey(j, path, "surface_layer_gap_voxels", 0, 8, o.extract.adaptive.layerGapVoxels);
         readWholeKey(j, path, "tet_refine_rounds", 0, 5, o.tet.refineRounds);
+        int trials = int(o.tet.slivers.lookaheadTrials);
+        readWholeKey(j, path, "tet_lookahead_trials", 0, 100000000, trials);
+        o.tet.slivers.lookaheadTrials = std::size_t(trials);
         readKey(j, "write_levelsets", o.writeLevelSets);
         readKey(j, "from_vdb", o.fromVdb);
         if (j.contains("pdl_profile_mm")) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -13,22 +14,36 @@ namespace jawmesh {
 namespace {
 
 /// Whether the outer faces around node v, with v at p, meet another outer face (exact test; faces
-/// that share a node are tested too, trianglesIntersect knows what they share).
+/// that share a node are tested too, trianglesIntersect knows what they share). Two scans of
+/// outerFaces: the faces around v, then those whose boxes reach theirs.
 bool outerFacesMeet(const TetMeshEditor& mesh, const std::vector<Tri>& outerFaces, std::int32_t v, const Vec3& p) {
     const auto at = [&](std::int32_t w) -> const Vec3& { return w == v ? p : mesh.node(w); };
-    std::vector<std::size_t> around;
+    const auto boxOf = [&](const Tri& f, Vec3& lo, Vec3& hi) {
+        lo = at(f[0]).cwiseMin(at(f[1])).cwiseMin(at(f[2]));
+        hi = at(f[0]).cwiseMax(at(f[1])).cwiseMax(at(f[2]));
+    };
+    std::vector<std::size_t> around, near;
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (std::size_t f = 0; f < outerFaces.size(); ++f)
-        if (std::find(outerFaces[f].begin(), outerFaces[f].end(), v) != outerFaces[f].end()) around.push_back(f);
+        if (std::find(outerFaces[f].begin(), outerFaces[f].end(), v) != outerFaces[f].end()) {
+            around.push_back(f);
+            Vec3 flo, fhi;
+            boxOf(outerFaces[f], flo, fhi);
+            lo = lo.cwiseMin(flo);
+            hi = hi.cwiseMax(fhi);
+        }
+    for (std::size_t f = 0; f < outerFaces.size(); ++f) {
+        Vec3 flo, fhi;
+        boxOf(outerFaces[f], flo, fhi);
+        if (!(flo.array() > hi.array()).any() && !(fhi.array() < lo.array()).any()) near.push_back(f);
+    }
     for (const std::size_t f : around) {
         const Tri& a = outerFaces[f];
         const Vec3 pa[3] = {at(a[0]), at(a[1]), at(a[2])};
-        const Vec3 lo = pa[0].cwiseMin(pa[1]).cwiseMin(pa[2]), hi = pa[0].cwiseMax(pa[1]).cwiseMax(pa[2]);
-        for (std::size_t g = 0; g < outerFaces.size(); ++g) {
+        for (const std::size_t g : near) {
             if (g == f) continue;
             const Tri& b = outerFaces[g];
             const Vec3 pb[3] = {at(b[0]), at(b[1]), at(b[2])};
-            const Vec3 blo = pb[0].cwiseMin(pb[1]).cwiseMin(pb[2]), bhi = pb[0].cwiseMax(pb[1]).cwiseMax(pb[2]);
-            if ((blo.array() > hi.array()).any() || (bhi.array() < lo.array()).any()) continue;
             if (trianglesIntersect(pa, a, pb, b)) return true;
         }
     }

@@ -104,7 +104,8 @@ double tetVolumeForEdge(double edgeMm);
 /// positively; slivers are then improved (tet/ImproveSlivers.h). When the minimum dihedral is
 /// still below the target (options.slivers.targetMinDihedralDeg), TetGen is re-run with stronger optimisation up to
 /// options.repairAttempts times and the best mesh is kept (stats->belowMinDihedral says whether
-/// the bound was met).
+/// the bound was met); the refinement rounds (options.refineRounds) come before the last of those
+/// runs, which makes far more tets.
 /// Throws Error when the complex is malformed (sizes, indices, no seeds, seed label 0) or TetGen
 /// fails (its reason: self-intersecting facets, too-close facets, tiny features, out of memory...).
 /// Cost: TetGen's, roughly O(n log n) in the output size; single-threaded, deterministic. Not
