@@ -8,6 +8,7 @@
 // set can hold until issue #22: it runs when JAWMESH_DIRTY_TEETH_TEST=1 (`bash quickstart.sh
 // mandible-test` sets it), and skips otherwise.
 #include "io/MeshIO.h"
+#include "levelset/Csg.h"
 #include "levelset/LevelSetSurface.h"
 #include "levelset/MeshToLevelSet.h"
 #include "support/TestData.h"
@@ -15,6 +16,7 @@
 #include "support_RunChecks.h"
 
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/MeshToVolume.h>
 
 #include <gtest/gtest.h>
 
@@ -31,23 +33,20 @@ namespace fs = std::filesystem;
 
 /// The tooth, a pulp shell kPulpDepthMm inside it and an enamel cap over its crown (the tooth cut
 /// kCapDepthMm under its highest point), concatenated, not welded. Both extra shells are surfaces
-/// of the tooth's own signed distance: the pulp its -1 mm level, the cap max(distance, distance to
-/// the cut's half-space) at 0, so the cap's crown lies on the tooth's within the extraction's error
-/// (near-coincident faces of two shells) and the union of the three is the tooth. The band is wide
-/// enough (6 mm) to hold the crown's whole cross-section, so the cut is extracted across it.
+/// of the tooth's own signed distance: the pulp its -1 mm level, the cap its intersection with a
+/// box over the cut (levelset/Csg.h), so the cap's crown lies on the tooth's within the
+/// extraction's error (near-coincident faces of two shells) and the union of the three is the tooth.
 SurfaceMesh multiShellTooth(const SurfaceMesh& tooth) {
-    constexpr double kVoxelMm = 0.1, kPulpDepthMm = 1.0, kCapDepthMm = 3.0, kBandMm = 6.0;
-    const openvdb::FloatGrid::Ptr field = meshToLevelSet(tooth, kVoxelMm, kBandMm / kVoxelMm);
+    constexpr double kVoxelMm = 0.1, kPulpDepthMm = 1.0, kCapDepthMm = 3.0;
+    const openvdb::FloatGrid::Ptr field = meshToLevelSet(tooth, kVoxelMm, kPulpDepthMm / kVoxelMm + 3);
     const SurfaceMesh pulp = extractLevelSetSurface(*field, -kPulpDepthMm);
-    double top = -1e9;
-    for (const Vec3& v : tooth.vertices) top = std::max(top, v.z());
-    const double cutZ = top - kCapDepthMm;
-    const openvdb::FloatGrid::Ptr capField = field->deepCopy();
-    for (auto v = capField->beginValueOn(); v; ++v) {
-        const double z = capField->indexToWorld(v.getCoord()).z();
-        v.setValue(std::max(*v, float(cutZ - z)));
-    }
-    const SurfaceMesh cap = extractLevelSetSurface(*capField, 0.0);
+    openvdb::math::BBox<openvdb::Vec3s> box;
+    for (const Vec3& v : tooth.vertices) box.expand(openvdb::Vec3s(float(v.x()), float(v.y()), float(v.z())));
+    box.min() -= openvdb::Vec3s(1.0f);
+    box.max() += openvdb::Vec3s(1.0f);
+    box.min().z() = box.max().z() - float(1.0 + kCapDepthMm);  // the cut, kCapDepthMm under the top
+    const openvdb::FloatGrid::Ptr above = openvdb::tools::createLevelSetBox<openvdb::FloatGrid>(box, field->transform(), 3.0f);
+    const SurfaceMesh cap = extractLevelSetSurface(*csgIntersection(*field, *above), 0.0);
     SurfaceMesh out = tooth;
     for (const SurfaceMesh* shell : {&pulp, &cap}) {
         const auto offset = std::int32_t(out.vertices.size());
