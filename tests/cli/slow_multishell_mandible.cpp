@@ -11,6 +11,7 @@
 #include "levelset/Csg.h"
 #include "levelset/LevelSetSurface.h"
 #include "levelset/MeshToLevelSet.h"
+#include "support/DirtySurfaces.h"
 #include "support/TestData.h"
 #include "support_CliRun.h"
 #include "support_RunChecks.h"
@@ -47,16 +48,7 @@ SurfaceMesh multiShellTooth(const SurfaceMesh& tooth) {
     box.min().z() = box.max().z() - float(1.0 + kCapDepthMm);  // the cut, kCapDepthMm under the top
     const openvdb::FloatGrid::Ptr above = openvdb::tools::createLevelSetBox<openvdb::FloatGrid>(box, field->transform(), 3.0f);
     const SurfaceMesh cap = extractLevelSetSurface(*csgIntersection(*field, *above), 0.0);
-    SurfaceMesh out = tooth;
-    for (const SurfaceMesh* shell : {&pulp, &cap}) {
-        const auto offset = std::int32_t(out.vertices.size());
-        out.vertices.insert(out.vertices.end(), shell->vertices.begin(), shell->vertices.end());
-        for (Tri t : shell->triangles) {
-            for (auto& v : t) v += offset;
-            out.triangles.push_back(t);
-        }
-    }
-    return out;
+    return test::concatenated(test::concatenated(tooth, pulp), cap);
 }
 
 TEST(SlowDirtyMandible, MultiShellTeethMeshEndToEnd) {

@@ -90,19 +90,25 @@ inline SurfaceMesh unwelded(const SurfaceMesh& m, unsigned seed = 17) {
     return out;
 }
 
+/// `a` followed by `b`, on their own vertices (not welded): two shells as one file holds them.
+inline SurfaceMesh concatenated(SurfaceMesh a, const SurfaceMesh& b) {
+    const auto offset = static_cast<std::int32_t>(a.vertices.size());
+    a.vertices.insert(a.vertices.end(), b.vertices.begin(), b.vertices.end());
+    for (Tri t : b.triangles) {
+        for (auto& v : t) v += offset;
+        a.triangles.push_back(t);
+    }
+    return a;
+}
+
 /// The surface plus a copy of it scaled by `scale` about its vertex centroid (an inner shell, as
 /// a pulp or dentin shell in a micro-CT export), concatenated: overlapping closed shells.
 inline SurfaceMesh withInnerShell(const SurfaceMesh& m, double scale) {
     Vec3 c = Vec3::Zero();
     for (const Vec3& v : m.vertices) c += v / static_cast<double>(m.vertices.size());
-    SurfaceMesh out = m;
-    const auto offset = static_cast<std::int32_t>(m.vertices.size());
-    for (const Vec3& v : m.vertices) out.vertices.push_back(c + scale * (v - c));
-    for (Tri t : m.triangles) {
-        for (auto& v : t) v += offset;
-        out.triangles.push_back(t);
-    }
-    return out;
+    SurfaceMesh inner = m;
+    for (Vec3& v : inner.vertices) v = c + scale * (v - c);
+    return concatenated(m, inner);
 }
 
 }  // namespace jawmesh::test
