@@ -14,21 +14,22 @@
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
 #include "io/GmshWriter.h"
+#include "io/Error.h"
 #include "io/PolyReader.h"
 #include "tet/ElementQuality.h"
+#include "tet/LabelFromSides.h"
 #include "tet/RegionSurfaces.h"
 #include "tet/RepairHoles.h"
+#include "tet/TetFaceAdjacency.h"
 #include "tet/TetgenAdapter.h"
 #include "tet/TetgenGroups.h"
-#include "tet/LabelFromSides.h"
-#include "io/Error.h"
 #include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <algorithm>
 #include <map>
 #include <set>
 #include <string>
@@ -37,19 +38,15 @@
 namespace {
 
 /// lost=1: the input triangles that are no face of any tet of one TetGen run (the first rung's
-/// switches, one run, no groups), after the tet stage's hole repair.
+/// switches, no groups), after the tet stage's hole repair; and whether that run, and the two
+/// groups' runs, label from the sides.
 int listLostTriangles(const jawmesh::InterfaceComplex& input, const jawmesh::TetOptions& o) {
-    std::vector<double> bounds;
-    for (const auto& seed : input.seeds) {
-        const auto kind = jawmesh::labelKind(seed.label);
-        const double edge = kind == jawmesh::LabelKind::Bone ? o.boneEdgeMm : kind == jawmesh::LabelKind::Pdl ? o.pdlEdgeMm : o.toothEdgeMm;
-        bounds.push_back(jawmesh::tetVolumeForEdge(edge));
-    }
+    const std::vector<double> bounds = jawmesh::seedVolumeBounds(input, o);
     jawmesh::TetStats st;
     jawmesh::InterfaceComplex repaired;
     const jawmesh::InterfaceComplex& c = jawmesh::repairHoles(input, repaired, bounds, st);
     std::printf("repaired: %zu filled, %zu left, %zu triangles\n", st.holeRepair.filled.size(), st.holeRepair.left.size(), c.surface.triangles.size());
-    const std::string sw = "pzQAq" + jawmesh::tetgenNumber(o.radiusEdgeRatio) + "/" + jawmesh::tetgenNumber(std::max(0.0, o.tetgenMinDihedralDeg)) + "aYMO3/7";
+    const std::string sw = jawmesh::firstTetgenSwitches(o);
     jawmesh::TetgenMesh raw = jawmesh::runTetgen(c, {sw, jawmesh::kTetgenDefaultOptMaxDihedralDeg, bounds});
     try {
         jawmesh::TetgenMesh labeled = raw;
@@ -61,13 +58,9 @@ int listLostTriangles(const jawmesh::InterfaceComplex& input, const jawmesh::Tet
         jawmesh::runTetgenInGroups(c, {sw, jawmesh::kTetgenDefaultOptMaxDihedralDeg, bounds}, true, false, peak);
         std::printf("two groups: labeled from the sides\n");
     } catch (const jawmesh::Error& e) { std::printf("two groups: %s\n", e.what()); }
+    const jawmesh::TetFaceAdjacency adj = jawmesh::tetFaceAdjacency(raw.mesh);
     std::set<std::array<std::int32_t, 3>> faces;
-    for (const auto& e : raw.mesh.tets)
-        for (int k = 0; k < 4; ++k) {
-            std::array<std::int32_t, 3> f{e[std::size_t((k + 1) % 4)], e[std::size_t((k + 2) % 4)], e[std::size_t((k + 3) % 4)]};
-            std::sort(f.begin(), f.end());
-            faces.insert(f);
-        }
+    for (const jawmesh::TetFaceRef& f : adj.faces) faces.insert(f.key);
     std::size_t lost = 0;
     for (std::size_t t = 0; t < c.surface.triangles.size(); ++t) {
         std::array<std::int32_t, 3> f = c.surface.triangles[t];

@@ -270,10 +270,8 @@ void improveSlivers(TetMesh& mesh, const SliverOptions& options, SliverStats* st
         }
         if (options.outerPushMm > 0 && !bad.empty()) {
             PhaseProgress outerPushing(stage, progress, 0.95, 1.0);
-            const std::size_t before = st.interfacePushes;
             const std::vector<Tri> outer = outerBoundaryFaces(editor);
             push(options.outerPushMm, &outer, outerPushing);
-            st.outerPushes += st.interfacePushes - before;
         }
         st.lookaheadTrials = imp.trialsMade;
         editor.finish();

@@ -13,37 +13,34 @@
 namespace jawmesh {
 namespace {
 
-/// Whether the outer faces around node v, with v at p, meet another outer face (exact test; faces
-/// that share a node are tested too, trianglesIntersect knows what they share). Two scans of
-/// outerFaces: the faces around v, then those whose boxes reach theirs.
+/// Whether the outer faces around node v (its star's faces with no tet across), with v at p, meet
+/// another outer face (exact test; faces that share a node are tested too, trianglesIntersect
+/// knows what they share). One scan of outerFaces for those whose boxes reach theirs.
 bool outerFacesMeet(const TetMeshEditor& mesh, const std::vector<Tri>& outerFaces, std::int32_t v, const Vec3& p) {
     const auto at = [&](std::int32_t w) -> const Vec3& { return w == v ? p : mesh.node(w); };
-    const auto boxOf = [&](const Tri& f, Vec3& lo, Vec3& hi) {
-        lo = at(f[0]).cwiseMin(at(f[1])).cwiseMin(at(f[2]));
-        hi = at(f[0]).cwiseMax(at(f[1])).cwiseMax(at(f[2]));
-    };
-    std::vector<std::size_t> around, near;
+    std::vector<Tri> around;
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (std::size_t f = 0; f < outerFaces.size(); ++f)
-        if (std::find(outerFaces[f].begin(), outerFaces[f].end(), v) != outerFaces[f].end()) {
-            around.push_back(f);
-            Vec3 flo, fhi;
-            boxOf(outerFaces[f], flo, fhi);
-            lo = lo.cwiseMin(flo);
-            hi = hi.cwiseMax(fhi);
+    for (const std::int32_t t : mesh.star(v))
+        for (int k = 0; k < 4; ++k) {
+            std::int32_t f[3];
+            if (mesh.tet(t)[std::size_t(k)] == v || mesh.acrossFace(t, k, f) >= 0) continue;
+            around.push_back({f[0], f[1], f[2]});
+            for (const std::int32_t w : f) {
+                lo = lo.cwiseMin(at(w));
+                hi = hi.cwiseMax(at(w));
+            }
         }
-    for (std::size_t f = 0; f < outerFaces.size(); ++f) {
-        Vec3 flo, fhi;
-        boxOf(outerFaces[f], flo, fhi);
-        if (!(flo.array() > hi.array()).any() && !(fhi.array() < lo.array()).any()) near.push_back(f);
-    }
-    for (const std::size_t f : around) {
-        const Tri& a = outerFaces[f];
-        const Vec3 pa[3] = {at(a[0]), at(a[1]), at(a[2])};
-        for (const std::size_t g : near) {
-            if (g == f) continue;
-            const Tri& b = outerFaces[g];
-            const Vec3 pb[3] = {at(b[0]), at(b[1]), at(b[2])};
+    const auto sorted = [](Tri f) {
+        std::sort(f.begin(), f.end());
+        return f;
+    };
+    for (const Tri& b : outerFaces) {
+        const Vec3 pb[3] = {at(b[0]), at(b[1]), at(b[2])};
+        const Vec3 blo = pb[0].cwiseMin(pb[1]).cwiseMin(pb[2]), bhi = pb[0].cwiseMax(pb[1]).cwiseMax(pb[2]);
+        if ((blo.array() > hi.array()).any() || (bhi.array() < lo.array()).any()) continue;
+        for (const Tri& a : around) {
+            if (sorted(a) == sorted(b)) continue;
+            const Vec3 pa[3] = {at(a[0]), at(a[1]), at(a[2])};
             if (trianglesIntersect(pa, a, pb, b)) return true;
         }
     }
@@ -101,6 +98,7 @@ bool pushInterfaceNode(TetMeshEditor& mesh, std::int32_t t, double maxMm, Accept
         for (auto s : mesh.star(v)) pushes.volumeChange[mesh.label(s)] += mesh.volume(s);
         pushes.pushed.insert(v);
         ++stats.interfacePushes;
+        if (outerFaces) ++stats.outerPushes;
         stats.largestPushMm = std::max(stats.largestPushMm, bestStep);
         return true;
     }

@@ -34,7 +34,8 @@ std::vector<Tri> outerBoundaryFaces(const TetMeshEditor& mesh);
 /// first node that moves ends it (stats.interfacePushes, stats.largestPushMm).
 /// With `outerFaces` (outerBoundaryFaces of the mesh), the nodes on the outer boundary instead:
 /// their star holds every tet around them, but not the outside, so a step is taken only when the
-/// boundary faces around the node then meet no other face of `outerFaces` (exact test).
+/// boundary faces around the node then meet no other face of `outerFaces` (exact test), and the
+/// push counts in stats.outerPushes too.
 bool pushInterfaceNode(TetMeshEditor& mesh, std::int32_t t, double maxMm, Acceptance& accept, InterfacePushes& pushes,
                        SliverStats& stats, const std::vector<Tri>* outerFaces = nullptr);
 

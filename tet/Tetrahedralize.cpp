@@ -95,22 +95,6 @@ void rejectSelfIntersections(const InterfaceComplex& plc) {
 
 // ---- the attempt ladder ----
 
-/// Per seed, the TetGen volume bound of its region's kind (-1: unbounded).
-std::vector<double> seedVolumeBounds(const InterfaceComplex& plc, const TetOptions& o) {
-    std::vector<double> bounds;
-    for (const RegionSeed& seed : plc.seeds) {
-        double edge = 0;
-        switch (labelKind(seed.label)) {
-        case LabelKind::Bone: edge = o.boneEdgeMm; break;
-        case LabelKind::Tooth:
-        case LabelKind::Implant: edge = o.toothEdgeMm; break;
-        case LabelKind::Pdl: edge = o.pdlEdgeMm; break;
-        default: break;
-        }
-        bounds.push_back(edge > 0 ? tetVolumeForEdge(edge) : -1.0);
-    }
-    return bounds;
-}
 
 /// One rung of the ladder: how its TetGen run differs from the options.
 struct Rung {
@@ -249,6 +233,24 @@ void refineRounds(Ladder& l, const InterfaceComplex& plc, ProgressStage& stage, 
 }  // namespace
 
 double tetVolumeForEdge(double edgeMm) { return edgeMm * edgeMm * edgeMm / (6.0 * std::sqrt(2.0)); }
+
+std::vector<double> seedVolumeBounds(const InterfaceComplex& plc, const TetOptions& o) {
+    std::vector<double> bounds;
+    for (const RegionSeed& seed : plc.seeds) {
+        double edge = 0;
+        switch (labelKind(seed.label)) {
+        case LabelKind::Bone: edge = o.boneEdgeMm; break;
+        case LabelKind::Tooth:
+        case LabelKind::Implant: edge = o.toothEdgeMm; break;
+        case LabelKind::Pdl: edge = o.pdlEdgeMm; break;
+        default: break;
+        }
+        bounds.push_back(edge > 0 ? tetVolumeForEdge(edge) : -1.0);
+    }
+    return bounds;
+}
+
+std::string firstTetgenSwitches(const TetOptions& options) { return tetgenSwitches(options, kLadder[0]); }
 
 TetMesh tetrahedralize(const InterfaceComplex& input, const TetOptions& options, Progress& progress, TetStats* stats) {
     ProgressStage stage(progress, kTetStageName);

@@ -91,6 +91,13 @@ nlohmann::json toJson(const TetStats& stats);
 /// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.
 double tetVolumeForEdge(double edgeMm);
 
+/// Per seed of `plc`, the TetGen volume bound of its region's kind from the options' edge
+/// lengths, mm^3 (-1: unbounded): TetgenRun::seedVolumeBoundsMm3 as the stage sets it.
+std::vector<double> seedVolumeBounds(const InterfaceComplex& plc, const TetOptions& options);
+
+/// TetGen's switches for the first run of tetrahedralize's ladder with these options.
+std::string firstTetgenSwitches(const TetOptions& options);
+
 
 /// Note on -Y: TetGen cannot refine a region that is one tet thick between preserved facets (a
 /// thin PDL), so there the interface triangle size sets the element size; with

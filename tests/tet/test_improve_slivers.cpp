@@ -331,19 +331,14 @@ TetMesh outerLip(double liftMm, double roofGapMm) {
     return m;
 }
 
-/// The outer boundary's faces of a mesh as a surface (for the exact self-intersection check).
+/// The outer boundary's faces of a mesh (faces of one tet only) as a surface, for the exact
+/// self-intersection check.
 SurfaceMesh outerSurface(const TetMesh& m) {
     SurfaceMesh s;
     s.vertices = m.nodes;
-    std::map<std::array<std::int32_t, 3>, int> count;
-    for (const Tet& e : m.tets)
-        for (int k = 0; k < 4; ++k) {
-            std::array<std::int32_t, 3> f{e[std::size_t((k + 1) % 4)], e[std::size_t((k + 2) % 4)], e[std::size_t((k + 3) % 4)]};
-            std::sort(f.begin(), f.end());
-            ++count[f];
-        }
-    for (const auto& [f, n] : count)
-        if (n == 1) s.triangles.push_back(f);
+    const TetFaceAdjacency adj = tetFaceAdjacency(m);
+    for (std::size_t g = 0; g < adj.groupCount(); ++g)
+        if (adj.groupSize(g) == 1) s.triangles.push_back(adj.faces[std::size_t(adj.groupStart[g])].key);
     return s;
 }
 
