@@ -7,10 +7,11 @@
 // max (edge mm), O (optimisation level), repair (attempts), improve (0/1), check (0: no intersection check first), Y (0: TetGen may split interface triangles),
 // refine (rounds of local refinement, tet/RefineComplex.h), holes (1: only fill the surface's holes and list them),
 // trials (the sliver improver's lookahead trials in all), push, outerpush (mm an interface node inside the mesh / on its outer boundary may be pushed off a thin spot), lost (1: repair the holes, run TetGen once with the first
-// rung's switches and list the input triangles that are no tet face).
+// rung's switches and list the input triangles that are no tet face), wedges (1: the region wedges before and after the hole repair).
 // BENCH_WRITE=<file.msh> writes the mesh.
 #include "filters/FillSurfaceHoles.h"
 #include "filters/OpenRegionEdges.h"
+#include "filters/RegionWedges.h"
 #include "filters/ShellSeeds.h"
 #include "io/GmshReader.h"
 #include "io/GmshWriter.h"
@@ -80,6 +81,20 @@ int listLostTriangles(const jawmesh::InterfaceComplex& input, const jawmesh::Tet
     return 0;
 }
 
+/// wedges=1: the region wedges (filters/RegionWedges.h) of the complex as given and after the tet
+/// stage's hole repair: a wedge under the dihedral target makes slivers no improver can mend.
+int compareRegionWedges(const jawmesh::InterfaceComplex& input, const jawmesh::TetOptions& o) {
+    jawmesh::TetStats st;
+    jawmesh::InterfaceComplex repaired;
+    const jawmesh::InterfaceComplex& c = jawmesh::repairHoles(input, repaired, jawmesh::seedVolumeBounds(input, o), st);
+    for (const double deg : {5.0, 10.0, 15.0, 20.0}) {
+        const jawmesh::RegionWedgeStats a = jawmesh::measureRegionWedges(input, deg), b = jawmesh::measureRegionWedges(c, deg);
+        std::printf("edges with a region wedge under %.0f deg: given %zu (smallest %.2f), after the hole repair %zu (smallest %.2f)\n", deg,
+                    a.edgesBelow, a.smallestDeg, b.edgesBelow, b.smallestDeg);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -89,7 +104,7 @@ int main(int argc, char** argv) {
     }
     jawmesh::TetOptions o;
     bool holesOnly = false;
-    bool lostOnly = false;
+    bool lostOnly = false, wedgesOnly = false;
     o.boneEdgeMm = 2.0;
     o.toothEdgeMm = 1.0;
     o.pdlEdgeMm = 0.3;
@@ -114,6 +129,7 @@ int main(int argc, char** argv) {
         else if (k == "holes") holesOnly = v != 0;
         else if (k == "trials") o.slivers.lookaheadTrials = std::size_t(v);
         else if (k == "lost") lostOnly = v != 0;
+        else if (k == "wedges") wedgesOnly = v != 0;
         else if (k == "push") o.slivers.interfacePushMm = v;
         else if (k == "outerpush") o.slivers.outerPushMm = v;
         else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
@@ -143,6 +159,7 @@ int main(int argc, char** argv) {
         return 0;
     }
     if (lostOnly) return listLostTriangles(c, o);
+    if (wedgesOnly) return compareRegionWedges(c, o);
     jawmesh::TetStats s;
     const auto t0 = std::chrono::steady_clock::now();
     const jawmesh::TetMesh out = jawmesh::tetrahedralize(c, o, jawmesh::noProgress(), &s);
