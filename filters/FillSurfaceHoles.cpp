@@ -3,18 +3,20 @@
 
 #include "filters/HoleFlap.h"
 #include "filters/HoleLoops.h"
+#include "filters/PatchChecks.h"
+#include "filters/PatchWedge.h"
 #include "filters/SelfIntersections.h"
 #include "filters/TriangulateLoop.h"
 #include "io/Labels.h"
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <map>
 #include <unordered_set>
 
 namespace jawmesh {
 namespace {
-
-bool overlap(const BBox& a, const BBox& b) { return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all(); }
 
 /// Drops the triangles marked in `removed`, and the vertices no triangle uses then.
 void dropTriangles(InterfaceComplex& c, const std::vector<char>& removed) {
@@ -27,38 +29,6 @@ void dropTriangles(InterfaceComplex& c, const std::vector<char>& removed) {
         }
     c.surface = compactSurface(c.surface.vertices, std::move(kept));
     c.sides = std::move(sides);
-}
-
-/// True when a patch (triangles over `positions`, global indices `patch`) is sound: no triangle
-/// degenerate, none intersecting another of the patch or a triangle of `near`.
-bool patchIsClean(const SurfaceMesh& s, const std::vector<Tri>& patch, const std::vector<Vec3>& positions,
-                  const std::vector<std::int32_t>& near) {
-    const auto corners = [&](const Tri& t, Vec3 out[3]) {
-        for (int k = 0; k < 3; ++k) {
-            const auto v = std::size_t(t[std::size_t(k)]);
-            out[k] = v < s.vertices.size() ? s.vertices[v] : positions[v - s.vertices.size()];
-        }
-    };
-    for (std::size_t i = 0; i < patch.size(); ++i) {
-        Vec3 a[3];
-        corners(patch[i], a);
-        if (triangleDegenerate(a[0], a[1], a[2])) return false;
-        BBox box;
-        for (const Vec3& x : a) box.extend(x);
-        for (std::size_t j = i + 1; j < patch.size(); ++j) {
-            Vec3 b[3];
-            corners(patch[j], b);
-            if (trianglesIntersect(a, patch[i], b, patch[j])) return false;
-        }
-        for (const std::int32_t t : near) {
-            const Tri& other = s.triangles[std::size_t(t)];
-            if (!overlap(box, triangleBox(s, other))) continue;
-            Vec3 b[3];
-            corners(other, b);
-            if (trianglesIntersect(a, patch[i], b, other)) return false;
-        }
-    }
-    return true;
 }
 
 /// Whether the sheet's triangles along the loop have sides {pair[1], pair[0]} (the loop's own
@@ -78,9 +48,40 @@ bool sheetUsesLoopOrder(const InterfaceComplex& c, const HoleLoop& loop, const s
     return vote >= 0;
 }
 
-/// One loop: the patch (global indices, apex appended after the surface's vertices) or empty.
+/// A candidate patch of one loop, its triangles wound as the loop (global indices, its new points
+/// appended after the surface's vertices).
+struct Candidate {
+    std::vector<Tri> triangles;
+    std::vector<Vec3> apex;
+    HoleRepair how;
+};
+
+/// Of clean candidate patches of one loop, the first when its smallest wedge reaches
+/// kHoleMinWedgeDeg; else the one with the widest smallest wedge among those that sweep over no
+/// vertex on their way from the first (filters/PatchChecks.h).
+std::size_t widestWedge(const SurfaceMesh& s, const HoleLoop& loop, const std::vector<std::int32_t>& near,
+                        const std::vector<Candidate>& clean, const std::function<double(const Candidate&)>& wedgeDeg) {
+    std::size_t best = 0;
+    double bestDeg = wedgeDeg(clean.front());
+    if (bestDeg >= kHoleMinWedgeDeg) return best;
+    const Candidate& first = clean.front();
+    for (std::size_t i = 1; i < clean.size(); ++i) {
+        const double deg = wedgeDeg(clean[i]);
+        if (deg > bestDeg && !patchSweepsAVertex(s, near, loop.vertices, first.triangles, first.apex, clean[i].triangles, clean[i].apex)) {
+            best = i;
+            bestDeg = deg;
+        }
+    }
+    return best;
+}
+
+/// One loop: the patch (global indices, apex appended after the surface's vertices) or empty. The
+/// first clean of ear clipping, least area and a centroid fan; when that one opens a region wedge
+/// under kHoleMinWedgeDeg (filters/PatchWedge.h), the clean candidate with the widest smallest
+/// wedge among those and fans whose apex is raised or sunk along the loop's normal, provided it
+/// sweeps over no vertex on its way from the first (filters/PatchChecks.h).
 std::vector<Tri> patchFor(const InterfaceComplex& c, const HoleLoop& loop, const std::unordered_set<std::uint64_t>& surfaceEdges,
-                          const std::vector<char>& removed, std::vector<Vec3>& apex, HoleRepair& how) {
+                          const std::vector<char>& removed, bool loopOrder, std::vector<Vec3>& apex, HoleRepair& how) {
     const SurfaceMesh& s = c.surface;
     std::vector<Vec3> points;
     BBox box;
@@ -88,9 +89,12 @@ std::vector<Tri> patchFor(const InterfaceComplex& c, const HoleLoop& loop, const
         points.push_back(s.vertices[std::size_t(v)]);
         box.extend(points.back());
     }
+    const Vec3 centre = loopCentroid(points), normal = newellNormal(points).normalized();
+    const double radius = 0.5 * loopDiameterMm(points);
+    for (const double f : {1.0, -1.0}) box.extend(centre + f * radius * normal);  // the raised fans' apexes
     std::vector<std::int32_t> near;
     for (std::size_t t = 0; t < s.triangles.size(); ++t)
-        if (!removed[t] && overlap(box, triangleBox(s, s.triangles[t]))) near.push_back(std::int32_t(t));
+        if (!removed[t] && box.overlaps(triangleBox(s, s.triangles[t]))) near.push_back(std::int32_t(t));
     const auto global = [&](std::vector<Tri> local) {
         for (Tri& t : local)
             for (auto& v : t) v = v < std::int32_t(loop.vertices.size()) ? loop.vertices[std::size_t(v)] : std::int32_t(s.vertices.size());
@@ -99,19 +103,30 @@ std::vector<Tri> patchFor(const InterfaceComplex& c, const HoleLoop& loop, const
     const auto allowed = [&](int i, int j) {
         return !surfaceEdges.count(edgeKey(loop.vertices[std::size_t(i)], loop.vertices[std::size_t(j)]));
     };
+    const std::array<Label, 2> sides = loopOrder ? std::array<Label, 2>{loop.pair[1], loop.pair[0]} : loop.pair;
+    const auto wedgeDeg = [&](const Candidate& k) {
+        std::vector<Tri> laid = k.triangles;
+        if (!loopOrder)
+            for (Tri& t : laid) std::swap(t[1], t[2]);
+        return patchSmallestWedgeDeg(c, near, laid, k.apex, sides);
+    };
+    const std::vector<Candidate> flat = {{global(earClipLoop(points, allowed)), {}, HoleRepair::EarClipping},
+                                         {global(minimumAreaLoop(points, allowed)), {}, HoleRepair::MinimumArea},
+                                         {global(centroidFan(points.size())), {centre}, HoleRepair::CentroidFan}};
+    std::vector<Candidate> clean;
+    for (const Candidate& k : flat)
+        if (!k.triangles.empty() && patchIsClean(s, k.triangles, k.apex, near)) clean.push_back(k);
     apex.clear();
-    how = HoleRepair::EarClipping;
-    std::vector<Tri> patch = global(earClipLoop(points, allowed));
-    if (!patch.empty() && patchIsClean(s, patch, apex, near)) return patch;
-    how = HoleRepair::MinimumArea;
-    patch = global(minimumAreaLoop(points, allowed));
-    if (!patch.empty() && patchIsClean(s, patch, apex, near)) return patch;
-    how = HoleRepair::CentroidFan;
-    apex = {loopCentroid(points)};
-    patch = global(centroidFan(points.size()));
-    if (patchIsClean(s, patch, apex, near)) return patch;
-    apex.clear();
-    return {};
+    if (clean.empty()) return {};
+    if (wedgeDeg(clean.front()) < kHoleMinWedgeDeg)
+        for (const double f : {0.125, -0.125, 0.25, -0.25, 0.375, -0.375, 0.5, -0.5, 0.75, -0.75, 1.0, -1.0}) {
+            Candidate raised{global(centroidFan(points.size())), {centre + f * radius * normal}, HoleRepair::RaisedFan};
+            if (patchIsClean(s, raised.triangles, raised.apex, near)) clean.push_back(std::move(raised));
+        }
+    const Candidate& chosen = clean[widestWedge(s, loop, near, clean, wedgeDeg)];
+    apex = chosen.apex;
+    how = chosen.how;
+    return chosen.triangles;
 }
 
 }  // namespace
@@ -129,7 +144,7 @@ std::size_t HoleFillStats::trianglesRemoved() const {
 }
 
 std::size_t HoleFillStats::verticesAdded() const {
-    return std::size_t(std::count_if(filled.begin(), filled.end(), [](const FilledHole& h) { return h.how == HoleRepair::CentroidFan; }));
+    return std::size_t(std::count_if(filled.begin(), filled.end(), [](const FilledHole& h) { return h.how == HoleRepair::CentroidFan || h.how == HoleRepair::RaisedFan; }));
 }
 
 const char* holeRepairName(HoleRepair r) {
@@ -137,6 +152,7 @@ const char* holeRepairName(HoleRepair r) {
     case HoleRepair::EarClipping: return "ear clipping";
     case HoleRepair::MinimumArea: return "minimum area";
     case HoleRepair::CentroidFan: return "centroid fan";
+    case HoleRepair::RaisedFan: return "raised fan";
     case HoleRepair::TetCut: return "cut from tets";
     case HoleRepair::LidRemoved: return "lid removed";
     }
@@ -186,14 +202,14 @@ HoleFillStats fillSurfaceHoles(InterfaceComplex& complex) {
             stats.filled.push_back(hole);
             continue;
         }
+        // The patch is wound with its normal into pair[1]; turned over when the sheet says so.
+        const bool loopOrder = sheetUsesLoopOrder(complex, loop, loopEdges);
         std::vector<Vec3> apex;
-        std::vector<Tri> patch = patchFor(complex, loop, surfaceEdges, removed, apex, hole.how);
+        std::vector<Tri> patch = patchFor(complex, loop, surfaceEdges, removed, loopOrder, apex, hole.how);
         if (patch.empty()) {
             stats.left.push_back(hole);
             continue;
         }
-        // The patch is wound with its normal into pair[1]; turned over when the sheet says so.
-        const bool loopOrder = sheetUsesLoopOrder(complex, loop, loopEdges);
         for (Tri t : patch) {
             if (!loopOrder) std::swap(t[1], t[2]);
             s.triangles.push_back(t);
@@ -223,6 +239,9 @@ nlohmann::json toJson(const HoleFillStats& stats) {
             {"vertices_added", stats.verticesAdded()},
             {"triangles_removed", stats.trianglesRemoved()},
             {"largest_hole_mm", stats.largestHoleMm()},
+            {"wedge_flips", stats.wedgeFlips},
+            {"wedge_bumps", stats.wedgeBumps},
+            {"smallest_patch_wedge_deg", {{"before", stats.smallestPatchWedgeBeforeDeg}, {"after", stats.smallestPatchWedgeAfterDeg}}},
             {"holes", holes}};
 }
 

@@ -15,13 +15,6 @@ using Vec2 = Eigen::Vector2d;
 
 double cross2(const Vec2& a, const Vec2& b, const Vec2& c) { return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x(); }
 
-/// Newell's normal: the area vector of a closed polygon, its direction given by the winding.
-Vec3 newellNormal(const std::vector<Vec3>& loop) {
-    Vec3 n = Vec3::Zero();
-    for (std::size_t i = 0; i < loop.size(); ++i) n += loop[i].cross(loop[(i + 1) % loop.size()]);
-    return n;
-}
-
 /// The loop in a 2-D frame (u, v) with u x v along the Newell normal: counter-clockwise.
 std::vector<Vec2> projectLoop(const std::vector<Vec3>& loop) {
     const Vec3 n = newellNormal(loop).normalized();
@@ -82,6 +75,12 @@ std::vector<Tri> centroidFan(std::size_t n) {
     std::vector<Tri> tris;
     for (std::size_t i = 0; i < n; ++i) tris.push_back({std::int32_t(i), std::int32_t((i + 1) % n), std::int32_t(n)});
     return tris;
+}
+
+Vec3 newellNormal(const std::vector<Vec3>& loop) {
+    Vec3 n = Vec3::Zero();
+    for (std::size_t i = 0; i < loop.size(); ++i) n += loop[i].cross(loop[(i + 1) % loop.size()]);
+    return n;
 }
 
 Vec3 loopCentroid(const std::vector<Vec3>& loop) {

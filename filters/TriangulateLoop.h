@@ -21,6 +21,10 @@ std::vector<Tri> earClipLoop(const std::vector<Vec3>& loop, const std::function<
 /// The fan from an added vertex (index n, the loop's centroid) to every loop edge, wound as the loop.
 std::vector<Tri> centroidFan(std::size_t n);
 
+/// Newell's normal: the area vector of the closed polygon (twice its area in the Newell plane), its
+/// direction given by the winding.
+Vec3 newellNormal(const std::vector<Vec3>& loop);
+
 /// The loop's centroid (mean of its vertices), where centroidFan puts its apex.
 Vec3 loopCentroid(const std::vector<Vec3>& loop);
 

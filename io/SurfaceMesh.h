@@ -36,6 +36,8 @@ struct BBox {
     void extend(const Vec3& p) { min = min.cwiseMin(p); max = max.cwiseMax(p); }
     void extend(const BBox& b) { if (!b.empty()) { extend(b.min); extend(b.max); } }
     Vec3 size() const { return empty() ? Vec3::Zero() : Vec3(max - min); }
+    /// True when the two boxes share a point (closed boxes).
+    bool overlaps(const BBox& b) const { return (min.array() <= b.max.array()).all() && (b.min.array() <= max.array()).all(); }
 };
 
 /// Bounding box of the vertices referenced by at least one triangle (unused vertices ignored).

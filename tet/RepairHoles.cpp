@@ -4,6 +4,7 @@
 
 #include "filters/FillSurfaceHoles.h"
 #include "filters/OpenRegionEdges.h"
+#include "filters/PatchWedgeOpening.h"
 #include "io/Error.h"
 #include "tet/HoleCut.h"
 #include "tet/TetgenAdapter.h"
@@ -11,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 
 namespace jawmesh {
 namespace {
@@ -107,6 +109,31 @@ void fillPasses(InterfaceComplex& repaired, HoleFillStats& stats) {
     }
 }
 
+/// The repair's triangles (those of `repaired` that `input` does not have, by their corners: the
+/// fill passes renumber vertices) are flipped or bumped where they fold against a neighbour at a
+/// region wedge under kHoleMinWedgeDeg (filters/PatchWedgeOpening.h).
+void openSharpPatchWedges(const InterfaceComplex& input, InterfaceComplex& repaired, HoleFillStats& stats) {
+    using Corners = std::array<std::array<double, 3>, 3>;
+    const auto corners = [](const InterfaceComplex& c, const Tri& t) {
+        Corners k;
+        for (std::size_t i = 0; i < 3; ++i) {
+            const Vec3& v = c.surface.vertices[std::size_t(t[i])];
+            k[i] = {v.x(), v.y(), v.z()};
+        }
+        std::sort(k.begin(), k.end());
+        return k;
+    };
+    std::set<Corners> given;
+    for (const Tri& t : input.surface.triangles) given.insert(corners(input, t));
+    std::vector<char> added(repaired.surface.triangles.size(), 0);
+    for (std::size_t t = 0; t < added.size(); ++t) added[t] = given.count(corners(repaired, repaired.surface.triangles[t])) ? 0 : 1;
+    const PatchWedgeStats opened = openPatchWedges(repaired, added, kHoleMinWedgeDeg);
+    stats.wedgeFlips = opened.flips;
+    stats.wedgeBumps = opened.bumps;
+    stats.smallestPatchWedgeBeforeDeg = opened.smallestWedgeBeforeDeg;
+    stats.smallestPatchWedgeAfterDeg = opened.smallestWedgeAfterDeg;
+}
+
 }  // namespace
 
 const InterfaceComplex& repairHoles(const InterfaceComplex& input, InterfaceComplex& repaired,
@@ -115,7 +142,10 @@ const InterfaceComplex& repairHoles(const InterfaceComplex& input, InterfaceComp
     repaired = input;
     HoleFillStats& stats = st.holeRepair;
     fillPasses(repaired, stats);
-    if (stats.left.empty() || stats.strayEdges > 0) return repaired;
+    if (stats.left.empty() || stats.strayEdges > 0) {
+        openSharpPatchWedges(input, repaired, stats);
+        return repaired;
+    }
     const InterfaceComplex filled = repaired;
     const HoleFillStats filledStats = stats;
     for (const HoleCutWay& way : kHoleCutWays) {
@@ -131,6 +161,7 @@ const InterfaceComplex& repairHoles(const InterfaceComplex& input, InterfaceComp
         if (!openRegionEdges(repaired).empty()) fillPasses(repaired, stats);
         if (openRegionEdges(repaired).empty()) break;
     }
+    openSharpPatchWedges(input, repaired, stats);
     return repaired;
 }
 

@@ -4,6 +4,9 @@
 #include "filters/FillSurfaceHoles.h"
 #include "filters/HoleLoops.h"
 #include "filters/OpenRegionEdges.h"
+#include "filters/PatchWedgeOpening.h"
+#include "filters/SelfIntersections.h"
+#include "filters/RegionWedges.h"
 #include "io/Error.h"
 #include "tet/TetTestComplexes.h"
 #include "tet/Tetrahedralize.h"
@@ -12,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 using namespace jawmesh;
@@ -93,6 +97,134 @@ TEST(HoleRepair, PatchesCloseTheHolesAndALidIsTakenOut) {
     // The patches lie in the bottom face and are wound as the sheet: the block's volumes are back.
     const std::map<Label, double> want = voxelVolumes(jawBlockScene()), got = complexVolumes(c);
     for (const auto& [label, volume] : want) EXPECT_NEAR(got.at(label), volume, 1e-9 * volume) << labelName(label);
+}
+
+/// A flat square pyramid of bone, its top face (the unit square at z = 0) missing and its apex
+/// 0.05 mm below: a flat patch meets the walls at a region wedge of atan(0.05 / 0.5) = 5.71 deg.
+/// With `speck`, a tetrahedron of bone 0.01 mm across floats 0.02 mm above the hole's centre.
+InterfaceComplex flatPyramidWithOpenTop(bool speck) {
+    InterfaceComplex c;
+    c.surface.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, -0.05}};
+    for (std::int32_t i = 0; i < 4; ++i) c.surface.triangles.push_back({(i + 1) % 4, i, 4});  // outward: down and out
+    if (speck) {
+        const Vec3 centre(0.5, 0.5, 0.02);
+        const double s = 0.005;
+        for (const Vec3& d : {Vec3(s, s, s), Vec3(s, -s, -s), Vec3(-s, s, -s), Vec3(-s, -s, s)}) c.surface.vertices.push_back(centre + d);
+        for (const Tri& t : {Tri{5, 6, 7}, Tri{5, 8, 6}, Tri{5, 7, 8}, Tri{6, 8, 7}}) c.surface.triangles.push_back(t);
+    }
+    c.sides.assign(c.surface.triangles.size(), {kOutsideLabel, kMandibleBoneLabel});
+    return c;
+}
+
+// A patch that would fold sharply against the sheet (a region wedge under kHoleMinWedgeDeg, whose
+// tets could only be slivers) gives way to a fan raised along the loop's normal, unless that fan
+// would sweep over another piece of the surface.
+TEST(HoleRepair, SharpWedgeOpensWithARaisedFanThatSweepsNothing) {
+    const double flatDeg = std::atan(0.1) * 180 / M_PI;
+    {
+        InterfaceComplex c = flatPyramidWithOpenTop(false);
+        ASSERT_GT(complexVolumes(c).count(kMandibleBoneLabel), 0u);
+        const HoleFillStats stats = fillSurfaceHoles(c);
+        ASSERT_EQ(stats.filled.size(), 1u);
+        EXPECT_EQ(stats.filled[0].how, HoleRepair::RaisedFan);
+        EXPECT_TRUE(openRegionEdges(c).empty());
+        EXPECT_GE(measureRegionWedges(c, kHoleMinWedgeDeg).smallestDeg, kHoleMinWedgeDeg);
+        // The bone gained the raised fan's pyramid over the unit square: a third of its height.
+        const double apexHeight = c.surface.vertices.back().z();
+        EXPECT_GT(apexHeight, 0.0);
+        EXPECT_NEAR(complexVolumes(c).at(kMandibleBoneLabel), 0.05 / 3 + apexHeight / 3, 1e-12);
+    }
+    {
+        InterfaceComplex c = flatPyramidWithOpenTop(true);
+        const HoleFillStats stats = fillSurfaceHoles(c);
+        ASSERT_EQ(stats.filled.size(), 1u);
+        EXPECT_EQ(stats.filled[0].how, HoleRepair::EarClipping);  // every raised fan would cover the speck
+        EXPECT_TRUE(openRegionEdges(c).empty());
+        EXPECT_NEAR(measureRegionWedges(c, kHoleMinWedgeDeg).smallestDeg, flatDeg, 1e-9);
+    }
+}
+
+// A repair triangle folding sharply against the sheet (the flat cap of the pyramid, as a patch cut
+// from tets may lie) is bumped: a fan around a point lifted off it, clean, the wedge opened, the
+// bone grown by the tets the bumps add; never over another piece of the surface.
+TEST(HoleRepair, SharpRepairTrianglesAreBumpedWhereTheBumpSweepsNothing) {
+    for (const bool speck : {false, true}) {
+        SCOPED_TRACE(speck ? "speck over the first cap triangle" : "no speck");
+        InterfaceComplex c = flatPyramidWithOpenTop(false);
+        if (speck) {  // 0.02 mm over (0.7, 0.3), inside the first cap triangle's outline
+            InterfaceComplex withSpeck = flatPyramidWithOpenTop(true);
+            for (Vec3& v : withSpeck.surface.vertices)
+                if (v.z() > 0) v += Vec3(0.2, -0.2, 0);
+            c = withSpeck;
+        }
+        const std::size_t given = c.surface.triangles.size();
+        c.surface.triangles.push_back({0, 1, 2});  // the cap, wound up and out like the walls' outside
+        c.surface.triangles.push_back({0, 2, 3});
+        c.sides.resize(c.surface.triangles.size(), {kOutsideLabel, kMandibleBoneLabel});
+        ASSERT_TRUE(openRegionEdges(c).empty());
+        const double volumeBefore = complexVolumes(c).at(kMandibleBoneLabel);
+        std::vector<char> bumpable(c.surface.triangles.size(), 0);
+        bumpable[given] = bumpable[given + 1] = 1;
+        const PatchWedgeStats stats = openPatchWedges(c, bumpable, kHoleMinWedgeDeg);
+        EXPECT_NEAR(stats.smallestWedgeBeforeDeg, std::atan(0.1) * 180 / M_PI, 1e-9);
+        EXPECT_TRUE(openRegionEdges(c).empty());
+        EXPECT_TRUE(findSelfIntersections(c.surface).clean());
+        EXPECT_GT(complexVolumes(c).at(kMandibleBoneLabel), volumeBefore);
+        EXPECT_EQ(bumpable.size(), c.surface.triangles.size());
+        if (speck) {  // the first cap triangle stays as it was: every bump of it covers the speck or cuts the walls
+            EXPECT_EQ(c.surface.triangles[given], (Tri{0, 1, 2}));
+            EXPECT_GE(stats.bumps, 1u);
+            EXPECT_EQ(stats.smallestWedgeAfterDeg, stats.smallestWedgeBeforeDeg);  // its wedge at the wall
+        } else {
+            EXPECT_GE(stats.bumps, 2u);
+            EXPECT_GE(stats.smallestWedgeAfterDeg, kHoleMinWedgeDeg);
+        }
+    }
+}
+
+/// An octahedron flattened to a disc, every triangle a repair's: equator +x, +y, -x, -y and apexes
+/// p = (0.45, 0.45, +0.005), q = (0.45, 0.45, -0.005) off-centre, so the two sheets meet at the
+/// equator edge +x +y at a fin of 2 atan(0.005 / 0.0707) = 8.1 degrees (sharper still at the far
+/// edges). With `speck`, a tetrahedron of bone 0.0006 mm across at (0.6, 0.38, 0), inside the tet
+/// that flipping the edge +x +y would sweep.
+InterfaceComplex flatOctahedron(bool speck) {
+    InterfaceComplex c;
+    const double h = 0.005;
+    c.surface.vertices = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0.45, 0.45, h}, {0.45, 0.45, -h}};
+    for (std::int32_t i = 0; i < 4; ++i) {
+        c.surface.triangles.push_back({i, (i + 1) % 4, 4});
+        c.surface.triangles.push_back({(i + 1) % 4, i, 5});
+    }
+    if (speck) {
+        const double s = 0.0003;
+        for (const Vec3& d : {Vec3(s, s, s), Vec3(s, -s, -s), Vec3(-s, s, -s), Vec3(-s, -s, s)})
+            c.surface.vertices.push_back(Vec3(0.6, 0.38, 0.0) + d);
+        for (const Tri& t : {Tri{6, 7, 8}, Tri{6, 9, 7}, Tri{6, 8, 9}, Tri{7, 9, 8}}) c.surface.triangles.push_back(t);
+    }
+    c.sides.assign(c.surface.triangles.size(), {kOutsideLabel, kMandibleBoneLabel});
+    return c;
+}
+
+bool hasEdge(const InterfaceComplex& c, std::int32_t a, std::int32_t b) {
+    return std::any_of(c.surface.triangles.begin(), c.surface.triangles.end(),
+                       [&](const Tri& t) { return std::count(t.begin(), t.end(), a) && std::count(t.begin(), t.end(), b); });
+}
+
+// Two repair triangles folded onto each other (a fin) have their shared edge flipped, the complex
+// staying closed and clean; never when the flip would sweep over another piece of the surface.
+TEST(HoleRepair, FinsOfTheRepairAreFlippedWhereTheFlipSweepsNothing) {
+    for (const bool speck : {false, true}) {
+        SCOPED_TRACE(speck ? "speck in the fin" : "no speck");
+        InterfaceComplex c = flatOctahedron(speck);
+        std::vector<char> repair(c.surface.triangles.size(), 0);
+        std::fill(repair.begin(), repair.begin() + 8, 1);
+        const PatchWedgeStats stats = openPatchWedges(c, repair, kHoleMinWedgeDeg);
+        EXPECT_GE(stats.flips, 1u);  // a far edge, with the speck
+        EXPECT_TRUE(openRegionEdges(c).empty());
+        EXPECT_TRUE(findSelfIntersections(c.surface).clean());
+        EXPECT_EQ(hasEdge(c, 0, 1), speck);  // +x +y flipped only where nothing lies in the fin
+        EXPECT_TRUE(hasEdge(c, 4, 5));       // the first flip's new edge p q
+    }
 }
 
 TEST(HoleRepair, TheTetStageRepairsAndMeshesWithExactVolumes) {

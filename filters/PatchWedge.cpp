@@ -1,0 +1,49 @@
+// Implements filters/PatchWedge.h; what it computes, its rules and its contract are documented there.
+#include "filters/PatchWedge.h"
+
+#include "filters/RegionWedges.h"
+
+#include <algorithm>
+#include <map>
+
+namespace jawmesh {
+
+double patchSmallestWedgeDeg(const InterfaceComplex& c, const std::vector<std::int32_t>& near, const std::vector<Tri>& patch,
+                             const std::vector<Vec3>& added, const std::array<Label, 2>& sides) {
+    const std::size_t surfaceVertices = c.surface.vertices.size();
+    const auto at = [&](std::int32_t v) -> const Vec3& {
+        return std::size_t(v) < surfaceVertices ? c.surface.vertices[std::size_t(v)] : added[std::size_t(v) - surfaceVertices];
+    };
+    // Per edge of the patch (lower index first): its triangles as (corners, sides).
+    struct Entry {
+        Tri tri;
+        std::array<Label, 2> sides;
+    };
+    std::map<std::pair<std::int32_t, std::int32_t>, std::vector<Entry>> fans;
+    const auto key = [](std::int32_t a, std::int32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+    for (const Tri& t : patch)
+        for (std::size_t k = 0; k < 3; ++k) fans[key(t[k], t[(k + 1) % 3])].push_back({t, sides});
+    for (const std::int32_t n : near) {
+        const Tri& t = c.surface.triangles[std::size_t(n)];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const auto it = fans.find(key(t[k], t[(k + 1) % 3]));
+            if (it != fans.end()) it->second.push_back({t, c.sides[std::size_t(n)]});
+        }
+    }
+    double smallest = 360;
+    std::vector<EdgeFanTriangle> fan;
+    for (const auto& [edge, entries] : fans) {
+        const auto [a, b] = edge;
+        fan.clear();
+        for (const Entry& e : entries) {
+            std::size_t ia = 0;
+            while (e.tri[ia] != a) ++ia;
+            const bool aThenB = e.tri[(ia + 1) % 3] == b;
+            fan.push_back({at(e.tri[(ia + (aThenB ? 2 : 1)) % 3]), e.sides[0], e.sides[1], aThenB});
+        }
+        smallest = std::min(smallest, smallestRegionWedgeDeg(at(a), at(b), fan.data(), fan.size(), FanKind::Whole));
+    }
+    return smallest;
+}
+
+}  // namespace jawmesh
