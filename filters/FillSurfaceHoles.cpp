@@ -58,8 +58,8 @@ struct Candidate {
 
 /// Of clean candidate patches of one loop, the first when its smallest wedge reaches
 /// kHoleMinWedgeDeg; else the one with the widest smallest wedge among those that sweep over no
-/// vertex on their way from the first (filters/PatchChecks.h).
-std::size_t widestWedge(const SurfaceMesh& s, const HoleLoop& loop, const std::vector<std::int32_t>& near,
+/// vertex or seed on their way from the first (filters/PatchChecks.h).
+std::size_t widestWedge(const InterfaceComplex& c, const HoleLoop& loop, const std::vector<std::int32_t>& near,
                         const std::vector<Candidate>& clean, const std::function<double(const Candidate&)>& wedgeDeg) {
     std::size_t best = 0;
     double bestDeg = wedgeDeg(clean.front());
@@ -67,7 +67,8 @@ std::size_t widestWedge(const SurfaceMesh& s, const HoleLoop& loop, const std::v
     const Candidate& first = clean.front();
     for (std::size_t i = 1; i < clean.size(); ++i) {
         const double deg = wedgeDeg(clean[i]);
-        if (deg > bestDeg && !patchSweepsAVertex(s, near, loop.vertices, first.triangles, first.apex, clean[i].triangles, clean[i].apex)) {
+        if (deg > bestDeg && !patchSweepsAVertex(c.surface, near, loop.vertices, first.triangles, first.apex, clean[i].triangles,
+                                                 clean[i].apex, c.seeds)) {
             best = i;
             bestDeg = deg;
         }
@@ -123,7 +124,7 @@ std::vector<Tri> patchFor(const InterfaceComplex& c, const HoleLoop& loop, const
             Candidate raised{global(centroidFan(points.size())), {centre + f * radius * normal}, HoleRepair::RaisedFan};
             if (patchIsClean(s, raised.triangles, raised.apex, near)) clean.push_back(std::move(raised));
         }
-    const Candidate& chosen = clean[widestWedge(s, loop, near, clean, wedgeDeg)];
+    const Candidate& chosen = clean[widestWedge(c, loop, near, clean, wedgeDeg)];
     apex = chosen.apex;
     how = chosen.how;
     return chosen.triangles;

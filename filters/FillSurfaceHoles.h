@@ -61,11 +61,12 @@ nlohmann::json toJson(const HoleFillStats& stats);
 /// of its own or a surface triangle near the hole. When the patch so chosen makes a region wedge
 /// under kHoleMinWedgeDeg with itself or the sheet (filters/PatchWedge.h), the clean one with the
 /// widest smallest wedge among those and fans whose apex is raised or sunk along the loop's normal
-/// by 1/4, 1/2 or 1 loop radius, when no vertex of the surface lies between it and the first
-/// (winding number): it then cannot have swept over a piece of the surface. The patch's triangles carry the loop's label
-/// pair, wound as the loop (so each region's boundary closes with one orientation) and with the
-/// sides in the order the sheet's triangles around the hole use. New vertices are appended, vertices
-/// no triangle uses any more are dropped (indices change then); the seeds are untouched. One pass: call again (holeLoops) to see what is left.
+/// by 1/8 to 1 loop radius, when no vertex of the surface and no seed lies between it and the first
+/// (winding number): it then cannot have swept over a piece of the surface. The patch's triangles
+/// carry the loop's label pair, wound as the loop (so each region's boundary closes with one
+/// orientation) and with the sides in the order the sheet's triangles around the hole use. New
+/// vertices are appended, vertices no triangle uses any more are dropped (indices change then);
+/// the seeds are untouched. One pass: call again (holeLoops) to see what is left.
 /// Cost: O(T log T) to find the loops plus O(T) per loop for the triangles near it.
 HoleFillStats fillSurfaceHoles(InterfaceComplex& complex);
 

@@ -52,7 +52,13 @@ bool patchIsClean(const SurfaceMesh& s, const std::vector<Tri>& patch, const std
 
 bool patchSweepsAVertex(const SurfaceMesh& s, const std::vector<std::int32_t>& near, const std::vector<std::int32_t>& rim,
                         const std::vector<Tri>& from, const std::vector<Vec3>& fromAdded, const std::vector<Tri>& to,
-                        const std::vector<Vec3>& toAdded) {
+                        const std::vector<Vec3>& toAdded, const std::vector<RegionSeed>& seeds) {
+    const auto between = [&](const Vec3& p) {
+        double omega = 0;
+        for (const Tri& f : from) omega += solidAngle(p, pointOf(s, fromAdded, f[0]), pointOf(s, fromAdded, f[1]), pointOf(s, fromAdded, f[2]));
+        for (const Tri& f : to) omega -= solidAngle(p, pointOf(s, toAdded, f[0]), pointOf(s, toAdded, f[1]), pointOf(s, toAdded, f[2]));
+        return std::abs(omega) > 2.0 * M_PI;  // |winding number| > 1/2
+    };
     std::vector<std::int32_t> tested(rim.begin(), rim.end());
     std::sort(tested.begin(), tested.end());
     for (const std::int32_t t : near)
@@ -60,13 +66,9 @@ bool patchSweepsAVertex(const SurfaceMesh& s, const std::vector<std::int32_t>& n
             const auto it = std::lower_bound(tested.begin(), tested.end(), v);
             if (it != tested.end() && *it == v) continue;
             tested.insert(it, v);
-            const Vec3& p = s.vertices[std::size_t(v)];
-            double omega = 0;
-            for (const Tri& f : from) omega += solidAngle(p, pointOf(s, fromAdded, f[0]), pointOf(s, fromAdded, f[1]), pointOf(s, fromAdded, f[2]));
-            for (const Tri& f : to) omega -= solidAngle(p, pointOf(s, toAdded, f[0]), pointOf(s, toAdded, f[1]), pointOf(s, toAdded, f[2]));
-            if (std::abs(omega) > 2.0 * M_PI) return true;  // |winding number| > 1/2
+            if (between(s.vertices[std::size_t(v)])) return true;
         }
-    return false;
+    return std::any_of(seeds.begin(), seeds.end(), [&](const RegionSeed& seed) { return between(seed.point); });
 }
 
 }  // namespace jawmesh

@@ -44,7 +44,7 @@ bool bump(InterfaceComplex& c, std::vector<char>& repair, std::size_t t, double 
     for (const double f : {0.0625, -0.0625, 0.125, -0.125, 0.25, -0.25, 0.5, -0.5, 1.0, -1.0}) {
         const std::vector<Vec3> apex = {centroid + f * longest * normal};
         const double deg = patchSmallestWedgeDeg(c, near, fan, apex, c.sides[t]);
-        if (deg <= bestDeg || !patchIsClean(s, fan, apex, near) || patchSweepsAVertex(s, near, rim, {tri}, {}, fan, apex)) continue;
+        if (deg <= bestDeg || !patchIsClean(s, fan, apex, near) || patchSweepsAVertex(s, near, rim, {tri}, {}, fan, apex, c.seeds)) continue;
         best = apex.front();
         bestDeg = deg;
         found = true;
@@ -101,7 +101,7 @@ bool flip(InterfaceComplex& c, const std::vector<char>& repair, std::size_t t, s
     const std::vector<Tri> before = {t1, t2}, after = {{a, d, cv}, {d, b, cv}};
     const double beforeDeg = patchSmallestWedgeDeg(c, near, before, {}, sides);
     if (beforeDeg >= minWedgeDeg || patchSmallestWedgeDeg(c, near, after, {}, sides) <= beforeDeg) return false;
-    if (!patchIsClean(s, after, {}, near) || patchSweepsAVertex(s, near, {a, b, cv, d}, before, {}, after, {})) return false;
+    if (!patchIsClean(s, after, {}, near) || patchSweepsAVertex(s, near, {a, b, cv, d}, before, {}, after, {}, c.seeds)) return false;
     s.triangles[t] = after[0];
     s.triangles[std::size_t(u)] = after[1];
     c.sides[std::size_t(u)] = sides;

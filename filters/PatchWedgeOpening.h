@@ -25,10 +25,11 @@ struct PatchWedgeStats {
 /// sides the other way round and the opposite winding: the same face) becomes the other diagonal of
 /// their quad when the smallest wedge over the five edges that changes is under minWedgeDeg and
 /// grows, the new edge is no edge yet, the two new triangles are clean and the tet between the old
-/// and the new pair holds no vertex (filters/PatchChecks.h). Then bumps: a repair triangle whose
+/// and the new pair holds no vertex or seed (filters/PatchChecks.h). Then bumps: a repair triangle whose
 /// smallest wedge over its edges is under minWedgeDeg becomes the fan (a, b, p), (b, c, p),
 /// (c, a, p) around p = its centroid moved along its normal by 1/16 to 1 times its longest edge,
-/// either way: the one that opens that wedge most, when the fan is clean and sweeps over no vertex.
+/// either way: the one that opens that wedge most, when the fan is clean and sweeps over no vertex
+/// or seed.
 /// Either way the complex stays intersection-free and every region keeps its topology (it gains
 /// or loses only the swept tets). A bump's triangles are repair triangles in the next pass; passes
 /// of each kind repeat while one changes something (at most maxPasses). Triangles in index order:
