@@ -5,12 +5,10 @@
 #include "filters/HoleLoops.h"
 #include "filters/PatchChecks.h"
 #include "filters/PatchWedge.h"
-#include "filters/SelfIntersections.h"
 #include "filters/TriangulateLoop.h"
 #include "io/Labels.h"
 
 #include <algorithm>
-#include <cmath>
 #include <functional>
 #include <map>
 #include <unordered_set>
@@ -56,13 +54,13 @@ struct Candidate {
     HoleRepair how;
 };
 
-/// Of clean candidate patches of one loop, the first when its smallest wedge reaches
+/// Of clean candidate patches of one loop, the first when its smallest wedge (firstDeg) reaches
 /// kHoleMinWedgeDeg; else the one with the widest smallest wedge among those that sweep over no
 /// vertex or seed on their way from the first (filters/PatchChecks.h).
 std::size_t widestWedge(const InterfaceComplex& c, const HoleLoop& loop, const std::vector<std::int32_t>& near,
-                        const std::vector<Candidate>& clean, const std::function<double(const Candidate&)>& wedgeDeg) {
+                        const std::vector<Candidate>& clean, double firstDeg, const std::function<double(const Candidate&)>& wedgeDeg) {
     std::size_t best = 0;
-    double bestDeg = wedgeDeg(clean.front());
+    double bestDeg = firstDeg;
     if (bestDeg >= kHoleMinWedgeDeg) return best;
     const Candidate& first = clean.front();
     for (std::size_t i = 1; i < clean.size(); ++i) {
@@ -119,12 +117,13 @@ std::vector<Tri> patchFor(const InterfaceComplex& c, const HoleLoop& loop, const
         if (!k.triangles.empty() && patchIsClean(s, k.triangles, k.apex, near)) clean.push_back(k);
     apex.clear();
     if (clean.empty()) return {};
-    if (wedgeDeg(clean.front()) < kHoleMinWedgeDeg)
+    const double firstDeg = wedgeDeg(clean.front());
+    if (firstDeg < kHoleMinWedgeDeg)
         for (const double f : {0.125, -0.125, 0.25, -0.25, 0.375, -0.375, 0.5, -0.5, 0.75, -0.75, 1.0, -1.0}) {
             Candidate raised{global(centroidFan(points.size())), {centre + f * radius * normal}, HoleRepair::RaisedFan};
             if (patchIsClean(s, raised.triangles, raised.apex, near)) clean.push_back(std::move(raised));
         }
-    const Candidate& chosen = clean[widestWedge(c, loop, near, clean, wedgeDeg)];
+    const Candidate& chosen = clean[widestWedge(c, loop, near, clean, firstDeg, wedgeDeg)];
     apex = chosen.apex;
     how = chosen.how;
     return chosen.triangles;

@@ -35,12 +35,7 @@ double patchSmallestWedgeDeg(const InterfaceComplex& c, const std::vector<std::i
     for (const auto& [edge, entries] : fans) {
         const auto [a, b] = edge;
         fan.clear();
-        for (const Entry& e : entries) {
-            std::size_t ia = 0;
-            while (e.tri[ia] != a) ++ia;
-            const bool aThenB = e.tri[(ia + 1) % 3] == b;
-            fan.push_back({at(e.tri[(ia + (aThenB ? 2 : 1)) % 3]), e.sides[0], e.sides[1], aThenB});
-        }
+        for (const Entry& e : entries) fan.push_back(edgeFanTriangle(e.tri, a, b, at(apexOf(e.tri, a, b)), e.sides));
         smallest = std::min(smallest, smallestRegionWedgeDeg(at(a), at(b), fan.data(), fan.size(), FanKind::Whole));
     }
     return smallest;

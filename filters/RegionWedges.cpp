@@ -67,14 +67,9 @@ RegionWedgeStats measureRegionWedges(const InterfaceComplex& complex, double thr
     for (const auto& [key, tris] : edges) {
         const auto a = std::uint32_t(key >> 32), b = std::uint32_t(key & 0xffffffffu);
         fan.clear();
-        for (std::uint32_t t : tris) {
-            const auto& f = F[t];
-            int ia = 0;
-            while (f[ia] != std::int32_t(a)) ++ia;
-            const bool aThenB = f[(ia + 1) % 3] == std::int32_t(b);
-            const auto c = f[(ia + (aThenB ? 2 : 1)) % 3];
-            fan.push_back({V[std::size_t(c)], complex.sides[t][0], complex.sides[t][1], aThenB});
-        }
+        for (std::uint32_t t : tris)
+            fan.push_back(edgeFanTriangle(F[t], std::int32_t(a), std::int32_t(b), V[std::size_t(apexOf(F[t], std::int32_t(a), std::int32_t(b)))],
+                                          complex.sides[t]));
         const double w = smallestRegionWedgeDeg(V[a], V[b], fan.data(), fan.size(), FanKind::Whole);
         stats.smallestDeg = std::min(stats.smallestDeg, w);
         if (w < thresholdDeg) ++stats.edgesBelow;

@@ -6,6 +6,7 @@
 
 #include "io/InterfaceComplex.h"
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -17,6 +18,21 @@ struct EdgeFanTriangle {
     Label front, back;  ///< sides[0] (into which its normal points) and sides[1]
     bool aThenB;        ///< the triangle's vertex order runs a -> b (else b -> a)
 };
+
+/// Triangle t (which has a and b as corners) as it lies in the fan of edge a-b: its apex position
+/// `apex` (the third vertex's) and the sides it carries.
+inline EdgeFanTriangle edgeFanTriangle(const Tri& t, std::int32_t a, std::int32_t b, const Vec3& apex, const std::array<Label, 2>& sides) {
+    std::size_t ia = 0;
+    while (t[ia] != a) ++ia;
+    return {apex, sides[0], sides[1], t[(ia + 1) % 3] == b};
+}
+
+/// The third vertex of triangle t besides a and b.
+inline std::int32_t apexOf(const Tri& t, std::int32_t a, std::int32_t b) {
+    for (const std::int32_t v : t)
+        if (v != a && v != b) return v;
+    return t[0];
+}
 
 /// How to read a pair of consecutive triangles whose facing labels disagree.
 enum class FanKind {
