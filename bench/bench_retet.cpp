@@ -91,6 +91,8 @@ int compareRegionWedges(const jawmesh::InterfaceComplex& input, const jawmesh::T
         const jawmesh::RegionWedgeStats a = jawmesh::measureRegionWedges(input, deg), b = jawmesh::measureRegionWedges(c, deg);
         std::printf("edges with a region wedge under %.0f deg: given %zu (smallest %.2f), after the hole repair %zu (smallest %.2f)\n", deg,
                     a.edgesBelow, a.smallestDeg, b.edgesBelow, b.smallestDeg);
+        if (deg == 10.0)
+            for (const auto& [at, w] : b.below) std::printf("  after the repair: %.2f deg at (%.3f, %.3f, %.3f)\n", w, at.x(), at.y(), at.z());
     }
     return 0;
 }

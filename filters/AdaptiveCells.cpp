@@ -356,10 +356,12 @@ bool errorsWithin(Block& b, const Mesh& mesh, Scratch& s, double carriedMm, doub
         const Vec3 a = corner(t, 0), c1 = corner(t, 1), c2 = corner(t, 2);
         const Vec3 samples[4] = {(a + c1 + c2) / 3.0, 0.5 * (a + c1), 0.5 * (c1 + c2), 0.5 * (c2 + a)};
         for (const Vec3& x : samples) {
+            // Only a sample farther than every one so far raises the error: a fine vertex within
+            // that distance ends its search.
             double d2 = std::numeric_limits<double>::infinity();
             std::int32_t nearest = -1;
             for (std::int32_t v : t)
-                for (const std::int32_t* c = mesh.clusterBegin(v); c != mesh.clusterEnd(v); ++c) {
+                for (const std::int32_t* c = mesh.clusterBegin(v); c != mesh.clusterEnd(v) && d2 > worst2; ++c) {
                     const double e = (P[std::size_t(*c)] - x).squaredNorm();
                     if (e < d2) {
                         d2 = e;

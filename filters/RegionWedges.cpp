@@ -72,8 +72,14 @@ RegionWedgeStats measureRegionWedges(const InterfaceComplex& complex, double thr
                                           complex.sides[t]));
         const double w = smallestRegionWedgeDeg(V[a], V[b], fan.data(), fan.size(), FanKind::Whole);
         stats.smallestDeg = std::min(stats.smallestDeg, w);
-        if (w < thresholdDeg) ++stats.edgesBelow;
+        if (w < thresholdDeg) {
+            ++stats.edgesBelow;
+            stats.below.push_back({0.5 * (V[a] + V[b]), w});
+        }
     }
+    std::sort(stats.below.begin(), stats.below.end(), [](const auto& x, const auto& y) {
+        return std::lexicographical_compare(x.first.data(), x.first.data() + 3, y.first.data(), y.first.data() + 3);
+    });
     return stats;
 }
 

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace jawmesh {
@@ -50,6 +51,8 @@ double smallestRegionWedgeDeg(const Vec3& a, const Vec3& b, const EdgeFanTriangl
 struct RegionWedgeStats {
     double smallestDeg = 360;  ///< over every edge and region but the outside
     std::size_t edgesBelow = 0;  ///< edges with a wedge under the threshold asked for
+    /// Those edges: midpoint (mm) and smallest wedge (degrees), by position.
+    std::vector<std::pair<Vec3, double>> below;
 };
 
 /// Wedges of every edge of the complex (each edge once).
