@@ -142,11 +142,12 @@ void judgeAgainstEdits(const nlohmann::json& history, EvalOptions& options, std:
         }
 }
 
-nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, const EvalOptions& options,
-                         const std::vector<int>& removedTeeth, const std::string& outJawDir, Progress& progress) {
+nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, JawSurfaces* loaded,
+                         const EvalOptions& options, const std::vector<int>& removedTeeth, const std::string& outJawDir,
+                         Progress& progress) {
     const auto start = std::chrono::steady_clock::now();
     try {
-        JawSurfaces input = evalInput(jawCase, load, progress);
+        JawSurfaces input = loaded ? toothUnionBoundaries(std::move(*loaded)) : evalInput(jawCase, load, progress);
         for (int unn : removedTeeth) input.teeth.erase(unn);
         const nlohmann::json report =
             writeEvalReport(mesh, &input, options, outJawDir + "/report", caseTitle(jawCase), progress);

@@ -32,12 +32,13 @@ JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& l
 /// against its own uniform thickness (a profile: measured only); the history goes into the report.
 void judgeAgainstEdits(const nlohmann::json& history, EvalOptions& options, std::vector<int>& removedTeeth);
 
-/// End-of-run report: loads the jaw's input again (the run freed it) without the teeth an edit
-/// removed (`removedTeeth`), writes <outJawDir>/report/ titled "<case folder> <jaw>", and returns the short summary that goes into run.json ("eval":
+/// End-of-run report against the jaw's input: `loaded` when the run kept it (moved from; reading a
+/// label volume and making its surfaces again took a tenth of a small run), else loaded again
+/// (a run from carved grids has none), without the teeth an edit removed (`removedTeeth`); writes <outJawDir>/report/ titled "<case folder> <jaw>", and returns the short summary that goes into run.json ("eval":
 /// verdict status and line, report path relative to outJawDir, seconds). Never throws Error: a failed report is returned as {"error": ...} so the validated
 /// mesh of the run stays the run's result. Throws Cancelled.
-nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, const EvalOptions& options,
-                         const std::vector<int>& removedTeeth, const std::string& outJawDir,
+nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, JawSurfaces* loaded,
+                         const EvalOptions& options, const std::vector<int>& removedTeeth, const std::string& outJawDir,
                          Progress& progress = noProgress());
 
 }  // namespace jawmesh

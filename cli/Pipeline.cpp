@@ -28,6 +28,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -94,6 +95,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     EvalOptions evalOptions;  // what the report judges the mesh against
     evalOptions.pdlTargetMm = options.carve.pdlThicknessMm;
     LabelField field;
+    std::optional<JawSurfaces> input;  // kept for the report: reading it again cost a tenth of a small run
     if (!options.fromVdb.empty() && !options.edits.edits.empty())
         throw Error(options.edits.file, "edits apply to a case's level sets before carving, not to a carved folder "
                                         "(--from-vdb); use `jawmesh edit` on a folder written by --write-levelsets");
@@ -101,8 +103,8 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         field = log.run(jaw + ": read label field", progress, [&] { return readLabelField(options.fromVdb); });
         if (const auto history = readEditHistory(options.fromVdb); !history.empty()) record["edits"] = history;
     } else {
-        JawSurfaces surfaces =
-            log.run(jaw + ": read", progress, [&] { return loadJawInput(jawCase, options.load, progress); });
+        input = log.run(jaw + ": read", progress, [&] { return loadJawInput(jawCase, options.load, progress); });
+        const JawSurfaces& surfaces = *input;
         requireMemoryFits(surfaces, options.voxelSizeMm, options.memoryLimitBytes,
                           jawCase.folder);
         caseAxes = surfaces.axes;
@@ -193,7 +195,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     });
 
     record["eval"] = log.run(jaw + ": eval", progress, [&] {
-        return runReport(mesh, jawCase, options.load, evalOptions, removedTeeth, outJawDir, progress);
+        return runReport(mesh, jawCase, options.load, input ? &*input : nullptr, evalOptions, removedTeeth, outJawDir, progress);
     });
     record["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
     record["peak_memory_bytes"] = peakResidentMemoryBytes();
