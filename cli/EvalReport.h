@@ -33,10 +33,12 @@ JawSurfaces loadEvalInput(const std::string& path, Jaw jaw, const LoadOptions& l
 void judgeAgainstEdits(const nlohmann::json& history, EvalOptions& options, std::vector<int>& removedTeeth);
 
 /// End-of-run report against the jaw's input: `loaded` when the run kept it (moved from; reading a
-/// label volume and making its surfaces again took a tenth of a small run), else loaded again
-/// (a run from carved grids has none), without the teeth an edit removed (`removedTeeth`); writes <outJawDir>/report/ titled "<case folder> <jaw>", and returns the short summary that goes into run.json ("eval":
-/// verdict status and line, report path relative to outJawDir, seconds). Never throws Error: a failed report is returned as {"error": ...} so the validated
-/// mesh of the run stays the run's result. Throws Cancelled.
+/// label volume and making its surfaces again took a tenth of a small run), else read again (a run
+/// from carved grids has none); without the teeth an edit removed (`removedTeeth`). Writes
+/// <outJawDir>/report/ titled "<case folder> <jaw>" and returns the short summary that goes into
+/// run.json ("eval": verdict status and line, report path relative to outJawDir, seconds). Never
+/// throws Error: a failed report is returned as {"error": ...} so the validated mesh of the run
+/// stays the run's result. Throws Cancelled.
 nlohmann::json runReport(const TetMesh& mesh, const JawCase& jawCase, const LoadOptions& load, JawSurfaces* loaded,
                          const EvalOptions& options, const std::vector<int>& removedTeeth, const std::string& outJawDir,
                          Progress& progress = noProgress());
