@@ -11,13 +11,11 @@
 //   staircase   every tooth as unsmoothed voxels of 0.2 mm (binary indicator, dual contouring)
 #include "io/Case.h"
 #include "io/Error.h"
-#include "levelset/LevelSetSurface.h"
-#include "levelset/MeshToLevelSet.h"
 #include "levelset/Phantom.h"
 #include "support/DirtySurfaces.h"
+#include "support/VoxelStaircase.h"
 
 #include <openvdb/openvdb.h>
-#include <openvdb/tree/LeafManager.h>
 
 #include <cstdio>
 #include <functional>
@@ -36,16 +34,6 @@ std::vector<std::string> splitList(const std::string& text) {
     for (std::string item; std::getline(in, item, ',');)
         if (!item.empty()) out.push_back(item);
     return out;
-}
-
-/// The surface as unsmoothed voxels: its level set at `voxelMm` made binary (+-0.5), extracted.
-SurfaceMesh staircase(const SurfaceMesh& m, double voxelMm) {
-    const openvdb::FloatGrid::Ptr grid = meshToLevelSet(m, voxelMm, 3.0);
-    openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid->tree());
-    leaves.foreach([](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
-        for (auto v = leaf.beginValueOn(); v; ++v) v.setValue(*v < 0 ? -0.5f : 0.5f);
-    });
-    return extractLevelSetSurface(*grid, 0.0);
 }
 
 /// The first jaw of a case folder in the phantom's form (bone, teeth, axes), to be dirtied.
@@ -84,7 +72,7 @@ const std::map<std::string, Dirt>& variants() {
              eachTooth(j, [](const SurfaceMesh& m) { return test::duplicateFaces(m, 0.2); });
          }},
         {"shells", [](PhantomJaw& j) { eachTooth(j, [](const SurfaceMesh& m) { return test::withInnerShell(m, 0.85); }); }},
-        {"staircase", [](PhantomJaw& j) { eachTooth(j, [](const SurfaceMesh& m) { return staircase(m, 0.2); }); }},
+        {"staircase", [](PhantomJaw& j) { eachTooth(j, [](const SurfaceMesh& m) { return test::voxelStaircase(m, 0.2); }); }},
     };
     return v;
 }

@@ -1,18 +1,21 @@
-// Issue #27 item 3: the shared mandible's teeth as a micro-CT segmentation exports them: each tooth
-// the plain concatenation of overlapping closed shells, not welded: the tooth itself, a "pulp"
-// shell 1 mm inside it and an "enamel" cap over the crown (the tooth cut 3 mm under its highest
-// point), the last two from the tooth's signed distance, so the cap's crown and the tooth's are
-// near-coincident faces of two shells. The union of the shells is the tooth, so the run must meet
-// the clean run's figures against the clean teeth. A
-// whole-mandible run takes about 4 minutes on this project's 2-core machines, more than CI's slow
-// set can hold until issue #22: it runs when JAWMESH_DIRTY_TEETH_TEST=1 (`bash quickstart.sh
-// mandible-test` sets it), and skips otherwise.
+// Issue #27 item 3: the shared mandible's teeth as segmentations export them.
+//  - Multi-shell (a micro-CT export): each tooth the plain concatenation of overlapping closed
+//    shells, not welded: the tooth itself, a "pulp" shell 1 mm inside it and an "enamel" cap over
+//    the crown (the tooth cut 3 mm under its highest point), the last two from the tooth's signed
+//    distance, so the cap's crown and the tooth's are near-coincident faces of two shells. The union
+//    of the shells is the tooth, so the run must meet the clean run's figures against the clean teeth.
+//  - Staircase: each tooth as its voxels of 0.2 mm, unsmoothed (tests/support/VoxelStaircase.h),
+//    judged against that staircase, as the user gave it.
+// A whole-mandible run takes about 4 minutes on this project's 2-core machines, more than CI's slow
+// set can hold until issue #22: they run when JAWMESH_DIRTY_TEETH_TEST=1 (`bash quickstart.sh
+// mandible-test` sets it), and skip otherwise.
 #include "io/MeshIO.h"
 #include "levelset/Csg.h"
 #include "levelset/LevelSetSurface.h"
 #include "levelset/MeshToLevelSet.h"
 #include "support/DirtySurfaces.h"
 #include "support/TestData.h"
+#include "support/VoxelStaircase.h"
 #include "support_CliRun.h"
 #include "support_RunChecks.h"
 
@@ -24,6 +27,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -51,29 +55,55 @@ SurfaceMesh multiShellTooth(const SurfaceMesh& tooth) {
     return test::concatenated(test::concatenated(tooth, pulp), cap);
 }
 
-TEST(SlowDirtyMandible, MultiShellTeethMeshEndToEnd) {
-    if (!std::getenv("JAWMESH_DIRTY_TEETH_TEST")) GTEST_SKIP() << "set JAWMESH_DIRTY_TEETH_TEST=1 (a 4-minute whole-mandible run)";
+/// Writes the shared mandible as a case in `dir`/case with every tooth replaced by dirty(tooth);
+/// runs `jawmesh run` on it into `dir`/out and returns the clean case's teeth.
+std::vector<int> runWithDirtyTeeth(const fs::path& dir, const std::function<SurfaceMesh(const SurfaceMesh&)>& dirty) {
     const std::string clean = test::sharedData("openmandible/input/mandible");
-    JAWMESH_REQUIRE_SHARED(clean);
-    const fs::path dir = test::scratchDir("multishell-mandible");
     const fs::path input = dir / "case" / "input" / "mandible";
     fs::create_directories(input / "teeth");
     fs::copy(fs::path(clean) / "bone", input / "bone", fs::copy_options::recursive);
     const std::vector<int> teeth = test::teethIn(clean + "/teeth");
-    ASSERT_EQ(teeth.size(), 14u);
+    EXPECT_EQ(teeth.size(), 14u);
     for (const int unn : teeth) {
         const std::string name = "tooth_" + std::to_string(unn) + ".stl";
-        const SurfaceMesh tooth = readSurface(clean + "/teeth/" + name);
-        const SurfaceMesh shells = multiShellTooth(tooth);
-        ASSERT_GT(shells.triangles.size(), 2 * tooth.triangles.size()) << name;
-        writeSurface(shells, (input / "teeth" / name).string());
+        writeSurface(dirty(readSurface(clean + "/teeth/" + name)), (input / "teeth" / name).string());
     }
-    const fs::path out = dir / "out";
-    const test::CliResult r = test::runJawmesh("-q run " + (dir / "case").string() + " -o " + out.string() + " --jaw mandible",
+    const test::CliResult r = test::runJawmesh("-q run " + (dir / "case").string() + " -o " + (dir / "out").string() + " --jaw mandible",
                                                dir / "run.log");
-    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return teeth;
+}
+
+constexpr const char* kRunOnRequest = "set JAWMESH_DIRTY_TEETH_TEST=1 (a whole-mandible run)";
+
+TEST(SlowDirtyMandible, MultiShellTeethMeshEndToEnd) {
+    if (!std::getenv("JAWMESH_DIRTY_TEETH_TEST")) GTEST_SKIP() << kRunOnRequest;
+    JAWMESH_REQUIRE_SHARED(test::sharedData("openmandible/input/mandible"));
+    const fs::path dir = test::scratchDir("multishell-mandible");
+    const std::vector<int> teeth = runWithDirtyTeeth(dir, [](const SurfaceMesh& tooth) {
+        const SurfaceMesh shells = multiShellTooth(tooth);
+        EXPECT_GT(shells.triangles.size(), 2 * tooth.triangles.size());
+        return shells;
+    });
+    if (HasFailure()) return;
     // against the clean teeth: the union of each tooth's shells
-    test::expectRunMeetsTargets(test::measureRun((out / "mandible").string(), clean, "mandible", teeth), teeth);
+    const std::string clean = test::sharedData("openmandible/input/mandible");
+    test::expectRunMeetsTargets(test::measureRun((dir / "out" / "mandible").string(), clean, "mandible", teeth), teeth);
+}
+
+// Disabled, the open item of #27 (docs/BENCHMARKS.md session 30): the run meets 10 deg and the PDL
+// figures, but the 0.2 mm steps, kept within the teeth's 0.02 mm bound, make 1.23 M tets (issue #5
+// allows 800 k), and one tooth lies 0.153 mm from its staircase (0.15 allowed).
+TEST(SlowDirtyMandible, DISABLED_StaircaseTeethMeshEndToEnd) {
+    if (!std::getenv("JAWMESH_DIRTY_TEETH_TEST")) GTEST_SKIP() << kRunOnRequest;
+    JAWMESH_REQUIRE_SHARED(test::sharedData("openmandible/input/mandible"));
+    const fs::path dir = test::scratchDir("staircase-mandible");
+    const std::vector<int> teeth = runWithDirtyTeeth(dir, [](const SurfaceMesh& tooth) { return test::voxelStaircase(tooth, 0.2); });
+    if (HasFailure()) return;
+    // against the staircase teeth the run was given
+    test::expectRunMeetsTargets(test::measureRun((dir / "out" / "mandible").string(), (dir / "case" / "input" / "mandible").string(),
+                                                 "mandible", teeth),
+                                teeth);
 }
 
 }  // namespace
