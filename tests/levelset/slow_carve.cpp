@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
 #include <chrono>
