@@ -32,7 +32,7 @@ private:
 };
 
 /// Largest distance of the vertices and triangle centroids of `from` to `to`, leaving out the points
-/// for which `skip` is true (none by default).
+/// for which `skip` is true (none by default; called from several threads).
 double directedHausdorff(const SurfaceMesh& from, const SurfaceDistance& to,
                          const std::function<bool(const Vec3&)>& skip = nullptr);
 
