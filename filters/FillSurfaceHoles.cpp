@@ -91,9 +91,7 @@ std::vector<Tri> patchFor(const InterfaceComplex& c, const HoleLoop& loop, const
     const Vec3 centre = loopCentroid(points), normal = newellNormal(points).normalized();
     const double radius = 0.5 * loopDiameterMm(points);
     for (const double f : {1.0, -1.0}) box.extend(centre + f * radius * normal);  // the raised fans' apexes
-    std::vector<std::int32_t> near;
-    for (std::size_t t = 0; t < s.triangles.size(); ++t)
-        if (!removed[t] && box.overlaps(triangleBox(s, s.triangles[t]))) near.push_back(std::int32_t(t));
+    const std::vector<std::int32_t> near = trianglesMeeting(s, box, [&](std::size_t t) { return removed[t] != 0; });
     const auto global = [&](std::vector<Tri> local) {
         for (Tri& t : local)
             for (auto& v : t) v = v < std::int32_t(loop.vertices.size()) ? loop.vertices[std::size_t(v)] : std::int32_t(s.vertices.size());

@@ -9,10 +9,6 @@
 namespace jawmesh {
 namespace {
 
-const Vec3& pointOf(const SurfaceMesh& s, const std::vector<Vec3>& added, std::int32_t v) {
-    return std::size_t(v) < s.vertices.size() ? s.vertices[std::size_t(v)] : added[std::size_t(v) - s.vertices.size()];
-}
-
 /// Solid angle, steradians, that triangle a b c subtends at p (Van Oosterom and Strackee), signed by
 /// its winding.
 double solidAngle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -26,7 +22,7 @@ double solidAngle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
 bool patchIsClean(const SurfaceMesh& s, const std::vector<Tri>& patch, const std::vector<Vec3>& added,
                   const std::vector<std::int32_t>& near) {
     const auto corners = [&](const Tri& t, Vec3 out[3]) {
-        for (std::size_t k = 0; k < 3; ++k) out[k] = pointOf(s, added, t[k]);
+        for (std::size_t k = 0; k < 3; ++k) out[k] = patchPoint(s, added, t[k]);
     };
     for (std::size_t i = 0; i < patch.size(); ++i) {
         Vec3 a[3];
@@ -55,8 +51,8 @@ bool patchSweepsAVertex(const SurfaceMesh& s, const std::vector<std::int32_t>& n
                         const std::vector<Vec3>& toAdded, const std::vector<RegionSeed>& seeds) {
     const auto between = [&](const Vec3& p) {
         double omega = 0;
-        for (const Tri& f : from) omega += solidAngle(p, pointOf(s, fromAdded, f[0]), pointOf(s, fromAdded, f[1]), pointOf(s, fromAdded, f[2]));
-        for (const Tri& f : to) omega -= solidAngle(p, pointOf(s, toAdded, f[0]), pointOf(s, toAdded, f[1]), pointOf(s, toAdded, f[2]));
+        for (const Tri& f : from) omega += solidAngle(p, patchPoint(s, fromAdded, f[0]), patchPoint(s, fromAdded, f[1]), patchPoint(s, fromAdded, f[2]));
+        for (const Tri& f : to) omega -= solidAngle(p, patchPoint(s, toAdded, f[0]), patchPoint(s, toAdded, f[1]), patchPoint(s, toAdded, f[2]));
         return std::abs(omega) > 2.0 * M_PI;  // |winding number| > 1/2
     };
     std::vector<std::int32_t> tested(rim.begin(), rim.end());

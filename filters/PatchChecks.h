@@ -1,6 +1,6 @@
 // The checks a hole patch (filters/FillSurfaceHoles.h) or a change to one (filters/PatchWedgeOpening.h)
 // must pass before it is laid into a surface: exactly clean, and no sweep over another piece of the
-// surface on its way from the patch it replaces.
+// surface on its way from the patch it replaces; and the two look-ups patches share.
 #pragma once
 
 #include "io/InterfaceComplex.h"
@@ -10,6 +10,21 @@
 #include <vector>
 
 namespace jawmesh {
+
+/// Point v of a patch: a vertex of s, or (v >= s.vertices.size()) one of the patch's new points.
+inline const Vec3& patchPoint(const SurfaceMesh& s, const std::vector<Vec3>& added, std::int32_t v) {
+    return std::size_t(v) < s.vertices.size() ? s.vertices[std::size_t(v)] : added[std::size_t(v) - s.vertices.size()];
+}
+
+/// The triangles of s whose boxes meet `box`, in index order, leaving out those `skip` is true for.
+/// Cost: O(T).
+template <typename Skip>
+std::vector<std::int32_t> trianglesMeeting(const SurfaceMesh& s, const BBox& box, Skip skip) {
+    std::vector<std::int32_t> near;
+    for (std::size_t t = 0; t < s.triangles.size(); ++t)
+        if (!skip(t) && box.overlaps(triangleBox(s, s.triangles[t]))) near.push_back(std::int32_t(t));
+    return near;
+}
 
 /// True when a patch is sound: no triangle degenerate, none intersecting (exactly,
 /// filters/SelfIntersections.h) another of the patch or a triangle of `near`. The patch's triangles

@@ -1,6 +1,7 @@
 // Implements filters/PatchWedge.h; what it computes, its rules and its contract are documented there.
 #include "filters/PatchWedge.h"
 
+#include "filters/PatchChecks.h"
 #include "filters/RegionWedges.h"
 
 #include <algorithm>
@@ -10,10 +11,7 @@ namespace jawmesh {
 
 double patchSmallestWedgeDeg(const InterfaceComplex& c, const std::vector<std::int32_t>& near, const std::vector<Tri>& patch,
                              const std::vector<Vec3>& added, const std::array<Label, 2>& sides) {
-    const std::size_t surfaceVertices = c.surface.vertices.size();
-    const auto at = [&](std::int32_t v) -> const Vec3& {
-        return std::size_t(v) < surfaceVertices ? c.surface.vertices[std::size_t(v)] : added[std::size_t(v) - surfaceVertices];
-    };
+    const auto at = [&](std::int32_t v) -> const Vec3& { return patchPoint(c.surface, added, v); };
     // Per edge of the patch (lower index first): its triangles as (corners, sides).
     struct Entry {
         Tri tri;

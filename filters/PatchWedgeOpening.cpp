@@ -15,10 +15,7 @@ std::vector<std::int32_t> trianglesNear(const SurfaceMesh& s, std::size_t t, dou
     BBox box = triangleBox(s, s.triangles[t]);
     box.min.array() -= margin;
     box.max.array() += margin;
-    std::vector<std::int32_t> near;
-    for (std::size_t u = 0; u < s.triangles.size(); ++u)
-        if (u != t && box.overlaps(triangleBox(s, s.triangles[u]))) near.push_back(std::int32_t(u));
-    return near;
+    return trianglesMeeting(s, box, [t](std::size_t u) { return u == t; });
 }
 
 /// The smallest wedge over triangle t's edges.
