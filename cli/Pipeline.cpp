@@ -113,11 +113,12 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         requireEditsFit(options.edits, inputTeeth);  // before the long stages
         record["input"] = {{"bone_triangles", surfaces.bone.triangles.size()}, {"teeth", surfaces.teeth.size()}};
         for (const std::string& note : surfaces.notes) record["notes"].push_back(note);
+        CarveOptions carve = carveOptionsFor(surfaces, options.carve, options.voxelSizeMm);
         JawLevelSets levelSets = log.run(jaw + ": level sets", progress, [&] {
-            return jawLevelSets(surfaces, jawCase, options.voxelSizeMm, options.bandVoxels, progress);
+            return jawLevelSets(surfaces, jawCase, options.voxelSizeMm, options.bandVoxels,
+                                std::max(options.bandVoxels, toothBandVoxels(carve, options.voxelSizeMm)), progress);
         });
         if (surfaces.pdlKept) evalOptions.pdlTargetMm = 0.0;  // a kept PDL is measured, not judged
-        CarveOptions carve = carveOptionsFor(surfaces, options.carve, options.voxelSizeMm);
         if (!options.edits.edits.empty())
             record["edits"].push_back(
                 log.run(jaw + ": edits", progress, [&] { return applyEdits(options.edits, levelSets, carve, progress); }));

@@ -212,6 +212,12 @@ void setOwnPdl(ToothWork& t, const CarveRules& rules, const CarveOptions& option
     }
 }
 
+/// Band half widths (voxels; outside, inside) for a socket widening w, an erosion e and the
+/// clearance, mm: the PDL rules read the tooth's distance that far on each side.
+std::pair<double, double> bandHalfWidthsVoxels(double wMm, double eMm, double clearanceMm, double voxelMm) {
+    return {std::max(1.0, std::ceil((wMm + clearanceMm) / voxelMm - 1e-9)), std::max(1.0, std::ceil(eMm / voxelMm - 1e-9))};
+}
+
 /// Band half widths (voxels) tooth i needs: its erosion inside; outside, the socket widening plus
 /// the clearance of itself and of every tooth near it (their bisectors read its distances), so
 /// a thicker PDL on one tooth widens only its own and its neighbours' bands.
@@ -228,7 +234,7 @@ std::pair<double, double> bandVoxels(const std::vector<ToothWork>& teeth, const 
     for (std::size_t m = 0; m < teeth.size(); ++m)
         if (m != i && box.hasOverlap(boxes[m])) w = std::max(w, widening(teeth[m]));
     const double e = rules.ratio * thicknessRangeMm(teeth[i].profile, teeth[i].uniformThickness).second;
-    return {std::max(1.0, std::ceil((w + rules.clearance) / rules.voxel - 1e-9)), std::max(1.0, std::ceil(e / rules.voxel - 1e-9))};
+    return bandHalfWidthsVoxels(w, e, rules.clearance, rules.voxel);
 }
 
 /// Phase 1. Per tooth (in parallel): its band, and tooth / bone distances where a gap can be
@@ -493,6 +499,13 @@ void measureTeeth(CarveContext& ctx) {
 }
 
 }  // namespace
+
+double toothBandVoxels(const CarveOptions& options, double voxelMm) {
+    const double tMax = thicknessRangeMm(options).second;
+    const double e = options.pdlRatio * tMax;
+    const auto [outside, inside] = bandHalfWidthsVoxels(tMax - e, e, options.clearanceVoxels * voxelMm, voxelMm);
+    return std::max(outside, inside);
+}
 
 LabelField carveJaw(Jaw jaw, const FloatGrid& bone, const std::map<int, FloatGrid::ConstPtr>& teethIn,
                     const CarveOptions& options, CarveSummary& summary, Progress& progress) {

@@ -9,9 +9,9 @@
 
 namespace jawmesh {
 
-JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double bandVoxels,
-                          Progress& progress) {
-    auto levelSet = [&](const SurfaceMesh& mesh, Label label, const std::string& source) {
+JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double boneBandVoxels,
+                          double toothBandVoxels, Progress& progress) {
+    auto levelSet = [&](const SurfaceMesh& mesh, double bandVoxels, Label label, const std::string& source) {
         try {
             openvdb::FloatGrid::Ptr grid = meshToLevelSet(mesh, voxelMm, bandVoxels, progress);
             grid->setName(labelName(label));
@@ -21,8 +21,8 @@ JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, d
         }
     };
     JawLevelSets sets;
-    sets.bone = levelSet(surfaces.bone, boneLabel(surfaces.jaw), boneSource(jawCase));
-    for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = levelSet(mesh, toothLabel(unn), toothSource(jawCase, unn));
+    sets.bone = levelSet(surfaces.bone, boneBandVoxels, boneLabel(surfaces.jaw), boneSource(jawCase));
+    for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = levelSet(mesh, toothBandVoxels, toothLabel(unn), toothSource(jawCase, unn));
     // Teeth in contact overlap a little and the carving splits them; a large shared volume is a
     // segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.
     for (auto a = sets.teeth.begin(); a != sets.teeth.end(); ++a)

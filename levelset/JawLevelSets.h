@@ -19,11 +19,12 @@ struct JawLevelSets {
     std::map<int, openvdb::FloatGrid::ConstPtr> teeth;
 };
 
-/// meshToLevelSet of the bone and every tooth of `surfaces` (read from `jawCase`). Throws Error
+/// meshToLevelSet of the bone and every tooth of `surfaces` (read from `jawCase`), band half widths
+/// in voxels (the teeth's as carving needs them: toothBandVoxels of levelset/CarveGaps.h). Throws Error
 /// naming the input file for a surface that cannot become a level set (e.g. only degenerate
 /// triangles: a point cloud) and for two teeth sharing more than 30% of the smaller one's volume
 /// (levelset/InsideOverlap.h: a tooth exported twice, teeth merged). Throws Cancelled.
-JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double bandVoxels,
-                          Progress& progress = noProgress());
+JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double boneBandVoxels,
+                          double toothBandVoxels, Progress& progress = noProgress());
 
 }  // namespace jawmesh

@@ -37,7 +37,7 @@ void paint(LabelVolume& v, const openvdb::FloatGrid& grid, const openvdb::Coord&
 }  // namespace
 
 LabelVolume labelVolumeFromSurfaces(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm) {
-    const JawLevelSets sets = jawLevelSets(surfaces, jawCase, voxelMm, 2.0);
+    const JawLevelSets sets = jawLevelSets(surfaces, jawCase, voxelMm, 2.0, 2.0);
     openvdb::CoordBBox box = sets.bone->evalActiveVoxelBoundingBox();
     for (const auto& [unn, grid] : sets.teeth) box.expand(grid->evalActiveVoxelBoundingBox());
     box.expand(1);
