@@ -138,21 +138,24 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     std::vector<int> removedTeeth;
     if (record.contains("edits")) judgeAgainstEdits(record["edits"], evalOptions, removedTeeth);
 
+    // The input's resolution caps the bone's bounds (a label map); a carved folder keeps the options'.
+    const SimplifyOptions simplify = simplifyOptionsFor(options.simplify, input ? input->labelVoxelMm : 0.0);
     ExtractStats extractStats;
     InterfaceComplex complex =
         log.run(jaw + ": interface surface", progress, [&] {
             ExtractOptions extract = options.extract;
             extract.findSeeds = false;  // simplification places them on its output
-            extract.adaptive = matchedTo(options.simplify, extract.adaptive);
+            extract.adaptive = matchedTo(simplify, extract.adaptive);
             return extractInterfaces(std::move(field), extract, progress, &extractStats);
         });
     field = LabelField{};  // extraction consumed the grids
     SimplifyStats simplifyStats;
     complex = log.run(jaw + ": simplify surface", progress,
-                      [&] { return simplifyInterfaces(complex, options.simplify, progress, &simplifyStats); });
+                      [&] { return simplifyInterfaces(complex, simplify, progress, &simplifyStats); });
     record["surface"] = {{"vertices", complex.surface.vertices.size()}, {"triangles", complex.surface.triangles.size()},
                          {"seeds", complex.seeds.size()}, {"simplify", toJson(simplifyStats)}};
     record["surface"].update(toJson(extractStats));
+    record["surface"]["bone_bounds_mm"] = {{"near_teeth", simplify.boneErrorMm}, {"far", simplify.boneFarErrorMm}};
 
     TetStats tetStats;
     TetMesh mesh = log.run(jaw + ": tetrahedralize", progress, [&] {

@@ -98,6 +98,15 @@ void checkRanges(const std::string& name, RunOptions& o) {
 
 }  // namespace
 
+SimplifyOptions simplifyOptionsFor(SimplifyOptions options, double labelVoxelMm) {
+    if (labelVoxelMm > 0) {
+        const double bound = kLabelVoxelBoundShare * labelVoxelMm;
+        options.boneErrorMm = std::min(options.boneErrorMm, bound);
+        options.boneFarErrorMm = std::min(options.boneFarErrorMm, bound);
+    }
+    return options;
+}
+
 RunOptions defaultRunOptions() {
     RunOptions o;
     // Measured on the shared mandible (docs/BENCHMARKS.md, sessions 6 and 7): PDL interfaces with

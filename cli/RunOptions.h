@@ -32,6 +32,13 @@ struct RunOptions {
     std::uint64_t memoryLimitBytes = 0;
 };
 
+/// The surface bounds for a jaw whose input is a label map of voxels labelVoxelMm across (0 for
+/// surfaces): the bone's at most kLabelVoxelBoundShare of a voxel, so that the mesh stays within a
+/// voxel of the labels (issue #23; the defaults, 0.08 mm near the teeth and 0.15 farther, left the
+/// 0.1 mm phantom's bone 0.155 mm from its label surface). Tooth and PDL bounds are tighter already.
+SimplifyOptions simplifyOptionsFor(SimplifyOptions options, double labelVoxelMm);
+constexpr double kLabelVoxelBoundShare = 0.8;
+
 /// Default options for jaws (mesh sizes in mm chosen for the published jaw models' element counts).
 RunOptions defaultRunOptions();
 

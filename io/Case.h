@@ -72,6 +72,9 @@ struct JawSurfaces {
     /// A label map's segmented PDL is kept: `bone` leaves it out, so it is the gap between each
     /// root and its socket, which carving keeps (levelset/CarveGaps.h keptPdlCarveOptions).
     bool pdlKept = false;
+    /// A label map's coarsest voxel spacing, mm (0 for surfaces): the input's own resolution, which
+    /// the surface bounds must not exceed (cli/RunOptions.h simplifyOptionsFor).
+    double labelVoxelMm = 0.0;
 };
 
 /// Reads every surface of a jaw (in parallel, TBB) and its axes; splits and numbers an all_teeth.obj

@@ -153,6 +153,7 @@ JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment&
     JawSurfaces out;
     out.jaw = jaw;
     out.pdlKept = keepPdl;
+    out.labelVoxelMm = v.directionsMm.colwise().norm().maxCoeff();
     out.bone = std::move(surfaces[0]);
     for (std::size_t j = 1; j < jobs.size(); ++j) out.teeth[jobs[j].first] = std::move(surfaces[j]);
     return out;

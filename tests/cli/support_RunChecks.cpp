@@ -198,9 +198,10 @@ void expectSoundMesh(const RunFigures& f, const std::vector<int>& teeth) {
     EXPECT_EQ(f.quality.belowDihedralThreshold, 0u);
 }
 
-void expectRunMeetsTargets(const RunFigures& f, const std::vector<int>& teeth, double boneBoundMm, double toothBoundMm) {
+void expectRunMeetsTargets(const RunFigures& f, const std::vector<int>& teeth, double boneBoundMm, double toothBoundMm,
+                           std::size_t maxTets) {
     expectSoundMesh(f, teeth);
-    EXPECT_LE(f.quality.tets, 800000u);
+    EXPECT_LE(f.quality.tets, maxTets);
     for (int u : teeth) {
         EXPECT_NEAR(f.pdlThicknessMeanMm.at(u), 0.20, 0.01) << "tooth " << u;
         EXPECT_LE(f.toothHausdorffMm.at(u), toothBoundMm) << "tooth " << u;

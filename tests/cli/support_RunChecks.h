@@ -74,10 +74,10 @@ std::vector<int> teethIn(const std::string& teethDir);
 /// degrees with no tet under it.
 void expectSoundMesh(const RunFigures& f, const std::vector<int>& teeth);
 
-/// expectSoundMesh and what issue #5 asks of every run: at most 800 k tets, PDL mean 0.200 +- 0.01
-/// mm and tooth Hausdorff <= toothBoundMm per tooth (#5's 0.15 mm), bone Hausdorff <= boneBoundMm
-/// (#5's 0.25 mm).
+/// expectSoundMesh and what issue #5 asks of every run: at most maxTets tets (#5's 800 k), PDL mean
+/// 0.200 +- 0.01 mm and tooth Hausdorff <= toothBoundMm per tooth (#5's 0.15 mm), bone Hausdorff <=
+/// boneBoundMm (#5's 0.25 mm).
 void expectRunMeetsTargets(const RunFigures& f, const std::vector<int>& teeth, double boneBoundMm = 0.25,
-                           double toothBoundMm = 0.15);
+                           double toothBoundMm = 0.15, std::size_t maxTets = 800000);
 
 }  // namespace jawmesh::test
