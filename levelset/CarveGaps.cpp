@@ -77,7 +77,8 @@ Local evalLocal(const ToothWork& t, const CarveRules& rules, FloatAcc& T, FloatA
         const bool bKnown = boneKnown(B, X, c + dx) && boneKnown(B, X, c - dx) && boneKnown(B, X, c + dy) &&
                             boneKnown(B, X, c - dy) && boneKnown(B, X, c + dz) && boneKnown(B, X, c - dz);
         const double dot = (bKnown && lT > 1e-3 * rules.voxel && lB > 1e-3 * rules.voxel) ? gT.dot(gB) / (lT * lB) : 0.0;
-        gap = std::max(gap, (dot + rules.facingCos) * rules.gapBridge);
+        const bool belowCrest = rules.pdlKept && t.hasRoot && h < t.hCervical - kKeptPdlCrestBandMm;
+        gap = std::max(gap, (dot + (belowCrest ? rules.rootFacingCos : rules.facingCos)) * rules.gapBridge);
         // An implant has no PDL to move: its gaps become bone, its overlaps are its own.
         if (!t.implant) movePdlForGapOrOverlap(rules, g, gap, th, e, w);
     }
@@ -188,6 +189,8 @@ CarveRules rulesOf(const CarveOptions& options, const FloatGrid& bone) {
     rules.apexTaper = options.apexTaperMm;
     rules.facingCos = -std::cos(options.gapFacingDeg * M_PI / 180.0);
     rules.minCapRise = options.minCapRiseMm;
+    rules.pdlKept = options.pdlKept;
+    rules.rootFacingCos = -std::cos(kKeptPdlRootFacingDeg * M_PI / 180.0);
     rules.clearance = options.clearanceVoxels * rules.voxel;
     rules.maxThickness = thicknessRangeMm(options).second;
     const double eMax = rules.ratio * rules.maxThickness;

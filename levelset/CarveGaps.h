@@ -145,6 +145,12 @@ constexpr double kKeptPdlBridgeMm = 0.8;
 /// the crown, as high as the gap is wide times tan(180 - angle). At 135 degrees the 0.1 mm
 /// 14-tooth phantom kept 131 tets under 10 degrees (the improver ran 12 minutes); at 160, 7.
 constexpr double kKeptPdlFacingDeg = 160;
+/// ... but only within kKeptPdlCrestBandMm below the cervical height (along the tooth's axis):
+/// deeper there is no crown for the bridge to climb, and gaps whose walls meet at 135-160 degrees
+/// (round apices, flaring sockets) left 2 % of the 14-tooth phantom's PDL voxels outside the PDL,
+/// as pockets the label clean-up then filled with bone. There the generated PDL's angle applies.
+constexpr double kKeptPdlCrestBandMm = 1.0;
+constexpr double kKeptPdlRootFacingDeg = 135;
 
 /// The options that keep a segmented PDL (JawSurfaces::pdlKept: the bone leaves it out, so it is
 /// the gap between root and socket): the rules above with no root erosion (ratio 0) and no bone

@@ -52,6 +52,8 @@ struct CarveRules {
     double far = 0.7;     ///< distances beyond the gap-bridging reach are reported as this (mm)
     double facingCos = 0.70710678118654752;  ///< -cos of CarveOptions::gapFacingDeg
     double minCapRise = 0;                   ///< CarveOptions::minCapRiseMm
+    bool pdlKept = false;                    ///< CarveOptions::pdlKept
+    double rootFacingCos = 0.70710678118654752;  ///< -cos of kKeptPdlRootFacingDeg (kept PDL, below the crest band)
 };
 
 /// Per-tooth working data.

@@ -22,7 +22,10 @@ void fitRootAxis(ToothWork& t, const CarveRules& rules, const FloatGrid& bone, c
     auto T = t.T->getConstAccessor();
     auto X = t.X->getConstAccessor();
     auto B = bone.getConstAccessor();
-    const double eCervical = rules.ratio * (t.profile ? t.profile->cervical : t.uniformThickness);
+    // Contact: bone within the root's erosion of its surface, or, for a kept PDL (no erosion), within
+    // the PDL's thickness (else no tooth of a kept PDL had a root: no cervical height, no apex).
+    const double tCervical = t.profile ? t.profile->cervical : t.uniformThickness;
+    const double eCervical = rules.pdlKept ? tCervical : rules.ratio * tCervical;
     for (auto it = t.T->tree().cbeginValueOn(); it; ++it) {
         const double v = *it;
         if (v >= 0 || v < -2 * rules.voxel) continue;
