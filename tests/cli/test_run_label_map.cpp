@@ -113,11 +113,9 @@ TEST(RunLabelMap, SegmentedPdlIsKeptWithItsVoxelVolumeOrRegenerated) {
     ASSERT_EQ(volumes.size(), 3u);  // bone, tooth 24, PDL 24
     for (const auto& [label, labelledMm3] : test::labelledVolumesMm3(jawDir.string())) {
         std::cout << labelName(label) << ": mesh " << volumes.at(label) << " mm^3, voxels " << labelledMm3 << " mm^3\n";
-        // Issue #23 asks 3 %; a kept PDL 1.5-2 voxels thick loses 2.7-3.5 % (0.1 mm, 14 teeth) to
-        // 4.1 % (here) of its voxels' volume in the extraction's vertex placement (docs/BENCHMARKS.md,
-        // session 31).
-        const double bound = labelKind(label) == LabelKind::Pdl ? 0.05 : 0.03;
-        EXPECT_NEAR(volumes.at(label) / labelledMm3, 1.0, bound) << labelName(label);
+        // Issue #23's 3 %, the PDL 1.5-2 voxels thick included (-0.8 % since session 31; -4.1 % while
+        // its field inside the root was raised by the facing test, docs/BENCHMARKS.md).
+        EXPECT_NEAR(volumes.at(label) / labelledMm3, 1.0, 0.03) << labelName(label);
     }
     const auto& thickness = kept.at("carve").at("summary").at("teeth").at(0).at("thickness_mm");
     EXPECT_GT(thickness.at("mean").get<double>(), 0.21);  // thicker than a regenerated PDL: kept
