@@ -116,7 +116,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         CarveOptions carve = carveOptionsFor(surfaces, options.carve, options.voxelSizeMm);
         JawLevelSets levelSets = log.run(jaw + ": level sets", progress, [&] {
             return jawLevelSets(surfaces, jawCase, options.voxelSizeMm, options.bandVoxels,
-                                std::max(options.bandVoxels, toothBandVoxels(carve, options.voxelSizeMm)), progress);
+                                toothBandVoxels(carve, options.voxelSizeMm), progress);
         });
         if (surfaces.pdlKept) evalOptions.pdlTargetMm = 0.0;  // a kept PDL is measured, not judged
         if (!options.edits.edits.empty())

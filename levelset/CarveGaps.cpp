@@ -35,7 +35,6 @@ struct Local {
     double T = 0;      ///< tooth distance
     double tooth = 0;  ///< carved tooth field
     double pdl = 0;    ///< PDL field
-    double pdlDistance = 0;  ///< what the PDL's distance grid holds: the PDL field, but see evalLocal
     double fill = 0;   ///< bridged-gap field (negative: gap that becomes socket)
     double excl = 0;   ///< w - T: positive where bone is excluded by this tooth
 };
@@ -88,10 +87,6 @@ Local evalLocal(const ToothWork& t, const CarveRules& rules, FloatAcc& T, FloatA
     // one region, or they leave a void: the tooth takes T = -e and the cap, the bone takes T = w.
     r.tooth = std::max(r.T, std::min(below(r.T + e), below(-socket)));
     r.pdl = std::max({r.T - w, -(r.T + e), socket});
-    // Inside the root a kept PDL (no erosion) is bounded by the root's surface alone: the socket
-    // term, a yes/no of the facing test there, raised the field inside the root and pulled the
-    // extracted tooth / PDL wall a fifth of a voxel into the PDL (2.8 % of its volume, session 31).
-    r.pdlDistance = rules.pdlKept && r.T < 0 ? -r.T : r.pdl;
     r.fill = std::max(-r.T, gap);
     r.excl = below(w - r.T);
     return r;
@@ -443,7 +438,12 @@ void toothAndPdlDistances(CarveContext& ctx, int k) {
                 const Coord c = v.getCoord();
                 const Local l = evalLocal(t, rules, acc.T[k], acc.X[k], acc.B, xf, c);
                 const double bis = bisector(k, cand, acc, c, rules.clearance);
-                double tooth = std::max(l.tooth, bis), pdl = std::max(l.pdlDistance, bis);
+                // Inside the root a kept PDL (no erosion) is bounded by the root's surface alone: the
+                // socket term, a yes/no of the facing test there, raised the field inside the root and
+                // pulled the extracted tooth / PDL wall a fifth of a voxel into the PDL (2.8 % of its
+                // volume, session 31).
+                const double pdlField = rules.pdlKept && l.T < 0 ? -l.T : l.pdl;
+                double tooth = std::max(l.tooth, bis), pdl = std::max(pdlField, bis);
                 // Voxels dropped by the clearance pass, or won by another tooth on a tie.
                 const Label lab = la.getValue(c);
                 if (tooth < 0 && lab != t.toothL) tooth = 0.5 * rules.voxel;

@@ -5,6 +5,7 @@
 #include "levelset/InsideOverlap.h"
 #include "levelset/MeshToLevelSet.h"
 
+#include <algorithm>
 #include <string>
 
 namespace jawmesh {
@@ -22,7 +23,8 @@ JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, d
     };
     JawLevelSets sets;
     sets.bone = levelSet(surfaces.bone, boneBandVoxels, boneLabel(surfaces.jaw), boneSource(jawCase));
-    for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = levelSet(mesh, toothBandVoxels, toothLabel(unn), toothSource(jawCase, unn));
+    const double toothBand = std::max(boneBandVoxels, toothBandVoxels);
+    for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = levelSet(mesh, toothBand, toothLabel(unn), toothSource(jawCase, unn));
     // Teeth in contact overlap a little and the carving splits them; a large shared volume is a
     // segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.
     for (auto a = sets.teeth.begin(); a != sets.teeth.end(); ++a)

@@ -20,7 +20,8 @@ struct JawLevelSets {
 };
 
 /// meshToLevelSet of the bone and every tooth of `surfaces` (read from `jawCase`), band half widths
-/// in voxels (the teeth's as carving needs them: toothBandVoxels of levelset/CarveGaps.h). Throws Error
+/// in voxels: the teeth's the wider of the bone's and toothBandVoxels (what carving reads of them:
+/// levelset/CarveGaps.h toothBandVoxels). Throws Error
 /// naming the input file for a surface that cannot become a level set (e.g. only degenerate
 /// triangles: a point cloud) and for two teeth sharing more than 30% of the smaller one's volume
 /// (levelset/InsideOverlap.h: a tooth exported twice, teeth merged). Throws Cancelled.
