@@ -1,11 +1,14 @@
-// bench_label_map <case> <jaw> <voxel mm> <out case> [labels.nii.gz|labels.nrrd|labels.seg.nrrd]:
+// bench_label_map <case> <jaw> <voxel mm> <out case> [labels.nii.gz|labels.nrrd|labels.seg.nrrd]
+//                 [<PDL min mm> <PDL max mm>]:
 // writes the jaw's surfaces as a label-map case (levelset/SurfacesToLabelVolume.h), to time
-// `jawmesh run` on real anatomy given as labels (issue #23).
+// `jawmesh run` on real anatomy given as labels (issue #23); with the two thicknesses, with
+// segmented PDLs of uneven thickness between them (tests/support/UnevenPdl.h).
 #include "io/Case.h"
 #include "io/Error.h"
 #include "io/LabelCase.h"
 #include "levelset/JawInput.h"
 #include "levelset/SurfacesToLabelVolume.h"
+#include "support/UnevenPdl.h"
 
 #include <openvdb/openvdb.h>
 
@@ -16,7 +19,7 @@
 int main(int argc, char** argv) {
     using namespace jawmesh;
     if (argc < 5) {
-        std::fprintf(stderr, "usage: %s <case> <mandible|maxilla> <voxel mm> <out case> [labels.nii.gz]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s <case> <mandible|maxilla> <voxel mm> <out case> [labels.nii.gz] [pdl min mm, max mm]\n", argv[0]);
         return 2;
     }
     try {
@@ -26,7 +29,8 @@ int main(int argc, char** argv) {
         for (const JawCase& jc : discoverCase(argv[1]).jaws) {
             if (jc.jaw != jaw) continue;
             const JawSurfaces surfaces = loadJawInput(jc);
-            const LabelVolume v = labelVolumeFromSurfaces(surfaces, jc, std::stod(argv[3]));
+            const SegmentedPdlLabels pdl = argc > 7 ? test::unevenPdlLabels(std::stod(argv[6]), std::stod(argv[7])) : SegmentedPdlLabels{};
+            const LabelVolume v = labelVolumeFromSurfaces(surfaces, jc, std::stod(argv[3]), pdl);
             writeLabelCase(v, jaw, surfaces.axes, argv[4], argc > 5 ? argv[5] : "labels.nii.gz");
             std::printf("%d x %d x %d voxels, %zu labels, %.1f s\n", v.size[0], v.size[1], v.size[2], v.segments.size(),
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

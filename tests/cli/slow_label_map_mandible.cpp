@@ -1,7 +1,7 @@
 // Issue #23 on whole jaws: the shared mandible written as a 0.1 mm label volume in the test itself
 // (levelset/SurfacesToLabelVolume.h: the voxels its surfaces hold), then `jawmesh run` on it; every
 // figure of a run measured against the label volume's own surfaces, and the mesh's volume against
-// the labelled voxels'. Then the 14-tooth phantom with segmented PDLs, kept. Each whole-jaw run
+// the labelled voxels'. Then the 14-tooth phantom and the shared mandible with segmented PDLs, kept. Each whole-jaw run
 // takes about 4 minutes on 2 cores (docs/BENCHMARKS.md), more than CI's slow set can hold until
 // issue #22: they run when JAWMESH_LABEL_MAP_TEST=1 (`bash quickstart.sh mandible-test` sets it),
 // and skip otherwise.
@@ -10,6 +10,7 @@
 #include "levelset/JawInput.h"
 #include "levelset/SurfacesToLabelVolume.h"
 #include "support/TestData.h"
+#include "support/UnevenPdl.h"
 #include "support_LabelCase.h"
 #include "support_RunChecks.h"
 #include "tet/ElementQuality.h"
@@ -58,10 +59,32 @@ TEST(SlowLabelMap, SharedMandibleAsALabelVolumeMeetsTheRunTargets) {
     EXPECT_NEAR(meshMm3 / labelledMm3, 1.0, 0.03);
 }
 
+/// A finished run of a label-map case with segmented PDLs, kept, against issue #23's figures: a
+/// sound mesh with every tooth and PDL, the bone and teeth within a voxel of the surfaces of their
+/// labels, and every region's volume within 3 % of its voxels'.
+void expectKeptPdlsMatchTheirLabels(const fs::path& caseDir, const fs::path& runJawDir, const fs::path& scratch, double voxelMm) {
+    const fs::path labelJaw = caseDir / "input" / "mandible";
+    test::writeLabelSurfaces(labelJaw.string(), (scratch / "surfaces").string());
+    const std::vector<int> teeth = test::teethIn((scratch / "surfaces" / "teeth").string());
+    ASSERT_EQ(teeth.size(), 14u);
+    const test::RunFigures f = test::measureRun(runJawDir.string(), (scratch / "surfaces").string(), "mandible", teeth);
+    test::expectSoundMesh(f, teeth);
+    for (int u : teeth) EXPECT_LE(f.toothHausdorffMm.at(u), voxelMm) << "tooth " << u;
+    EXPECT_LE(f.boneHausdorffMm, voxelMm);
+
+    const auto meshMm3 = labelVolumesMm3(readGmsh((runJawDir / "volumetric_meshes" / "mandible.msh").string()));
+    const auto labelledMm3 = test::labelledVolumesMm3(labelJaw.string());
+    EXPECT_EQ(meshMm3.size(), labelledMm3.size());  // bone, 14 teeth, 14 PDLs
+    for (const auto& [label, voxels] : labelledMm3) {
+        ASSERT_TRUE(meshMm3.count(label)) << labelName(label);
+        std::cout << labelName(label) << ": mesh " << meshMm3.at(label) << " mm^3, voxels " << voxels << " mm^3\n";
+        EXPECT_NEAR(meshMm3.at(label) / voxels, 1.0, 0.03) << labelName(label);
+    }
+}
+
 // Issue #23's held-out case is a 0.1 mm label volume with 14 segmented PDLs of uneven thickness,
 // kept as segmented: here the 14-tooth phantom labelled so (its PDL labels are the bone voxels
-// within 0.2 mm of a root: 1-3 voxels thick). Every region keeps its voxels' volume, and the bone
-// and teeth lie within a voxel of the surfaces of their labels.
+// within 0.2 mm of a root: 1-3 voxels thick).
 TEST(SlowLabelMap, PhantomWithFourteenSegmentedPdlsKeepsThemWithTheirVoxelVolumes) {
     if (!std::getenv("JAWMESH_LABEL_MAP_TEST")) GTEST_SKIP() << "set JAWMESH_LABEL_MAP_TEST=1 (a 4-minute 14-tooth run)";
     const fs::path dir = test::scratchDir("slow-label-map-kept-pdl");
@@ -72,25 +95,30 @@ TEST(SlowLabelMap, PhantomWithFourteenSegmentedPdlsKeepsThemWithTheirVoxelVolume
     ASSERT_EQ(std::system(make.c_str()), 0) << make;
     const std::string run = bin + " -q run " + (dir / "case").string() + " -o " + (dir / "out").string();
     ASSERT_EQ(std::system(run.c_str()), 0) << run;
+    expectKeptPdlsMatchTheirLabels(dir / "case", dir / "out" / "mandible", dir, voxelMm);
+}
 
-    const fs::path labelJaw = dir / "case" / "input" / "mandible";
-    test::writeLabelSurfaces(labelJaw.string(), (dir / "surfaces").string());
-    const std::vector<int> teeth = test::teethIn((dir / "surfaces" / "teeth").string());
-    ASSERT_EQ(teeth.size(), 14u);
-    const test::RunFigures f = test::measureRun((dir / "out" / "mandible").string(), (dir / "surfaces").string(), "mandible", teeth);
-    test::expectSoundMesh(f, teeth);
-    for (int u : teeth) EXPECT_LE(f.toothHausdorffMm.at(u), voxelMm) << "tooth " << u;
-    EXPECT_LE(f.boneHausdorffMm, voxelMm);
-
-    const auto meshMm3 = labelVolumesMm3(readGmsh((dir / "out" / "mandible" / "volumetric_meshes" / "mandible.msh").string()));
-    const auto labelledMm3 = test::labelledVolumesMm3(labelJaw.string());
-    EXPECT_EQ(meshMm3.size(), labelledMm3.size());  // bone, 14 teeth, 14 PDLs
-    for (const auto& [label, voxels] : labelledMm3) {
-        ASSERT_TRUE(meshMm3.count(label)) << labelName(label);
-        std::cout << labelName(label) << ": mesh " << meshMm3.at(label) << " mm^3, voxels " << voxels << " mm^3\n";
-        // Issue #23's 3 % of every region, the PDLs 2-3 voxels thick included.
-        EXPECT_NEAR(meshMm3.at(label) / voxels, 1.0, 0.03) << labelName(label);
-    }
+// The same on real anatomy, closer to the held-out case: the shared mandible at 0.1 mm with 14
+// segmented PDLs whose thickness varies from 0.1 to 0.3 mm around and along each root (one to
+// three voxels; tests/support/UnevenPdl.h), kept. Disabled until the bone's distance is met:
+// session 32 measured a valid, conformal mesh (884,779 tets, min dihedral 10.00, 0 under 10),
+// teeth 0.027-0.071 mm from their label surfaces, every region's volume within 3 % (PDLs -0.8 to
+// -2.8 %), but the bone 0.177 mm from its label surface (one voxel asked): one- and two-voxel
+// bone specks inside the PDLs dropped as fragments, one-voxel bone lips at the crest thinned, and
+// the kept PDL's floor of two carve voxels (0.1 mm) taken from the bone beside one-voxel PDLs
+// (docs/BENCHMARKS.md, session 32).
+TEST(SlowLabelMap, DISABLED_SharedMandibleWithUnevenSegmentedPdlsKeepsThemWithTheirVoxelVolumes) {
+    if (!std::getenv("JAWMESH_LABEL_MAP_TEST")) GTEST_SKIP() << "set JAWMESH_LABEL_MAP_TEST=1 (a 5-minute whole-mandible run)";
+    const std::string caseDir = test::sharedData("openmandible");
+    JAWMESH_REQUIRE_SHARED(caseDir);
+    const fs::path dir = test::scratchDir("slow-label-map-mandible-uneven-pdl");
+    const double voxelMm = 0.1;
+    const JawCase jc = discoverCase(caseDir).jaws.at(0);
+    const LabelVolume volume = labelVolumeFromSurfaces(loadJawInput(jc), jc, voxelMm, test::unevenPdlLabels(0.1, 0.3));
+    writeLabelCase(volume, Jaw::Mandible, {}, (dir / "case").string(), "labels.nii.gz");
+    const std::string run = std::string(JAWMESH_BINARY) + " -q run " + (dir / "case").string() + " -o " + (dir / "out").string();
+    ASSERT_EQ(std::system(run.c_str()), 0) << run;
+    expectKeptPdlsMatchTheirLabels(dir / "case", dir / "out" / "mandible", dir, voxelMm);
 }
 
 }  // namespace
