@@ -1,8 +1,8 @@
 // Implements levelset/SurfacesToLabelVolume.h; what it computes, its rules and its contract are documented there.
 #include "levelset/SurfacesToLabelVolume.h"
 
-#include "io/LabelCase.h"
 #include "io/Error.h"
+#include "io/LabelCase.h"
 #include "io/Labels.h"
 #include "levelset/JawLevelSets.h"
 
@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 
 namespace jawmesh {
 namespace {
