@@ -18,7 +18,7 @@
 
 int main(int argc, char** argv) {
     using namespace jawmesh;
-    if (argc < 5) {
+    if (argc < 5 || argc == 7 || argc > 8) {
         std::fprintf(stderr, "usage: %s <case> <mandible|maxilla> <voxel mm> <out case> [labels.nii.gz] [pdl min mm, max mm]\n", argv[0]);
         return 2;
     }
