@@ -6,6 +6,7 @@
 #include "io/Labels.h"
 #include "levelset/JawLevelSets.h"
 
+#include <openvdb/math/Operators.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -21,9 +22,9 @@ constexpr double kSocketGapMm = 0.5;
 /// ... where root and socket face each other within 60 degrees (cos of 120).
 constexpr double kSocketFacingCos = -0.5;
 
-/// Calls visit(ijk, value, label) for every voxel of the grid's active box that lies in v, with
-/// the grid's value there and v's label to change; v's voxel (i, j, k) is the grid's index
-/// (i, j, k) + offset.
+/// Calls visit(ijk, value, label, accessor) for every voxel of the grid's active box that lies in
+/// v, with the grid's value there, v's label to change and the thread's accessor to the grid; v's
+/// voxel (i, j, k) is the grid's index (i, j, k) + offset.
 template <typename Visit>
 void forEachVoxelOf(LabelVolume& v, const openvdb::FloatGrid& grid, const openvdb::Coord& offset, const Visit& visit) {
     const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
@@ -39,7 +40,7 @@ void forEachVoxelOf(LabelVolume& v, const openvdb::FloatGrid& grid, const openvd
                 const int i = x - offset.x();
                 if (i < 0 || i >= nx) continue;
                 const openvdb::Coord ijk(x, y, z);
-                visit(ijk, accessor.getValue(ijk), v.values[(static_cast<std::size_t>(k) * ny + j) * nx + i]);
+                visit(ijk, accessor.getValue(ijk), v.values[(static_cast<std::size_t>(k) * ny + j) * nx + i], accessor);
             }
         }
     });
@@ -47,7 +48,7 @@ void forEachVoxelOf(LabelVolume& v, const openvdb::FloatGrid& grid, const openvd
 
 /// Writes `label` on the still unlabelled voxels of v inside `grid` (negative).
 void paintInside(LabelVolume& v, const openvdb::FloatGrid& grid, const openvdb::Coord& offset, std::int32_t label) {
-    forEachVoxelOf(v, grid, offset, [&](const openvdb::Coord&, float value, std::int32_t& voxel) {
+    forEachVoxelOf(v, grid, offset, [&](const openvdb::Coord&, float value, std::int32_t& voxel, const auto&) {
         if (value < 0 && voxel == 0) voxel = label;
     });
 }
@@ -55,17 +56,12 @@ void paintInside(LabelVolume& v, const openvdb::FloatGrid& grid, const openvdb::
 /// Whether root and socket face each other across the voxel: their distances' gradients (central
 /// differences) point against each other, more than kSocketFacingCos. Not so above the bone's rim,
 /// where a segmentation leaves the gingiva's space unlabelled.
-bool facing(openvdb::FloatGrid::ConstAccessor& tooth, openvdb::FloatGrid::ConstAccessor& bone, const openvdb::Coord& ijk) {
-    const auto gradient = [&](openvdb::FloatGrid::ConstAccessor& a) {
-        openvdb::Vec3d g;
-        for (int axis = 0; axis < 3; ++axis) {
-            openvdb::Coord step(0, 0, 0);
-            step[axis] = 1;
-            g[axis] = a.getValue(ijk + step) - a.getValue(ijk - step);
-        }
-        return g.length() > 0 ? g / g.length() : g;
-    };
-    return gradient(tooth).dot(gradient(bone)) < kSocketFacingCos;
+template <typename ToothAccessor, typename BoneAccessor>
+bool facing(const ToothAccessor& tooth, const BoneAccessor& bone, const openvdb::Coord& ijk) {
+    using Gradient = openvdb::math::ISGradient<openvdb::math::CD_2ND>;
+    openvdb::Vec3f t = Gradient::result(tooth, ijk), b = Gradient::result(bone, ijk);
+    const float lengths = t.length() * b.length();
+    return lengths > 0 && t.dot(b) < kSocketFacingCos * lengths;
 }
 
 /// Writes tooth unn's PDL label on the still unlabelled voxels within the PDL's thickness of the
@@ -76,13 +72,12 @@ void paintPdl(LabelVolume& v, const openvdb::FloatGrid& tooth, const openvdb::Fl
               int unn, const SegmentedPdlLabels& pdl) {
     const std::int32_t label = pdlLabel(unn);
     tbb::enumerable_thread_specific<openvdb::FloatGrid::ConstAccessor> boneAccessors(bone.getConstAccessor());
-    tbb::enumerable_thread_specific<openvdb::FloatGrid::ConstAccessor> toothAccessors(tooth.getConstAccessor());
-    forEachVoxelOf(v, tooth, offset, [&](const openvdb::Coord& ijk, float toothMm, std::int32_t& voxel) {
+    forEachVoxelOf(v, tooth, offset, [&](const openvdb::Coord& ijk, float toothMm, std::int32_t& voxel, const auto& toothAccessor) {
         if (voxel != 0 || toothMm < 0) return;
         auto& boneAccessor = boneAccessors.local();
         const float boneMm = boneAccessor.getValue(ijk);
         if (boneMm >= 0) {
-            if (toothMm + boneMm < kSocketGapMm && facing(toothAccessors.local(), boneAccessor, ijk)) voxel = label;
+            if (toothMm + boneMm < kSocketGapMm && facing(toothAccessor, boneAccessor, ijk)) voxel = label;
             return;
         }
         if (toothMm >= pdl.maxThicknessMm) return;

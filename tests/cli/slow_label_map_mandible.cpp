@@ -1,9 +1,9 @@
 // Issue #23 on whole jaws: the shared mandible written as a 0.1 mm label volume in the test itself
 // (levelset/SurfacesToLabelVolume.h: the voxels its surfaces hold), then `jawmesh run` on it; every
 // figure of a run measured against the label volume's own surfaces, and the mesh's volume against
-// the labelled voxels'. Then the 14-tooth phantom and the shared mandible with segmented PDLs, kept. Each whole-jaw run
-// takes about 4 minutes on 2 cores (docs/BENCHMARKS.md), more than CI's slow set can hold until
-// issue #22: they run when JAWMESH_LABEL_MAP_TEST=1 (`bash quickstart.sh mandible-test` sets it),
+// the labelled voxels'. Then the 14-tooth phantom and the shared mandible with segmented PDLs,
+// kept. Each whole-jaw run takes about 4 minutes on 2 cores (docs/BENCHMARKS.md), more than CI's
+// slow set can hold until issue #22: they run when JAWMESH_LABEL_MAP_TEST=1 (`bash quickstart.sh mandible-test` sets it),
 // and skip otherwise.
 #include "io/GmshReader.h"
 #include "io/LabelCase.h"
