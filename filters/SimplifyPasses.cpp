@@ -10,33 +10,68 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <map>
+#include <cstdint>
 
 namespace jawmesh::simplify {
 namespace {
 
 using Cell = std::array<int, 3>;
 
-/// The block cell of every triangle (by centroid) and the index of every cell met, in cell order.
-void cellsOfTriangles(const State& st, double blockMm, double offsetMm, std::vector<Cell>& cellOf,
-                      std::map<Cell, std::size_t>& index) {
+/// The cells met, numbered in cell order (x, then y, then z: deterministic), looked up in a dense
+/// table over their range: a map's lookups, 26 per triangle near a block's border (most of them:
+/// the margin is most of a block), were a second of serial time per pass on the shared mandible.
+struct CellIndex {
+    Cell lo{0, 0, 0};
+    std::array<int, 3> size{0, 0, 0};
+    std::vector<std::int32_t> block;  ///< per cell of the range, its block or -1
+    std::int32_t count = 0;
+    std::int32_t find(const Cell& c) const {
+        std::size_t at = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int i = c[std::size_t(k)] - lo[std::size_t(k)];
+            if (i < 0 || i >= size[std::size_t(k)]) return -1;
+            at = at * std::size_t(size[std::size_t(k)]) + std::size_t(i);
+        }
+        return block[at];
+    }
+};
+
+/// The block cell of every triangle (by centroid) and the index of the cells met.
+CellIndex cellsOfTriangles(const State& st, double blockMm, double offsetMm, std::vector<Cell>& cellOf) {
     const auto& P = *st.points;
     const std::size_t nt = st.tris.size();
     cellOf.resize(nt);
-    for (std::size_t t = 0; t < nt; ++t) {
-        const Tri& f = st.tris[t];
-        const Vec3 c = (P[std::size_t(f[0])] + P[std::size_t(f[1])] + P[std::size_t(f[2])]) / 3.0;
-        for (int k = 0; k < 3; ++k) cellOf[t][std::size_t(k)] = int(std::floor((c[k] - offsetMm) / blockMm));
-        index.emplace(cellOf[t], 0);
-    }
-    std::size_t n = 0;
-    for (auto& [cell, i] : index) i = n++;  // blocks in cell order: deterministic
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            const Tri& f = st.tris[t];
+            const Vec3 c = (P[std::size_t(f[0])] + P[std::size_t(f[1])] + P[std::size_t(f[2])]) / 3.0;
+            for (int k = 0; k < 3; ++k) cellOf[t][std::size_t(k)] = int(std::floor((c[k] - offsetMm) / blockMm));
+        }
+    });
+    CellIndex index;
+    if (nt == 0) return index;
+    Cell hi = cellOf[0];
+    index.lo = cellOf[0];
+    for (const Cell& c : cellOf)
+        for (std::size_t k = 0; k < 3; ++k) index.lo[k] = std::min(index.lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
+    for (std::size_t k = 0; k < 3; ++k) index.size[k] = hi[k] - index.lo[k] + 1;
+    index.block.assign(std::size_t(index.size[0]) * std::size_t(index.size[1]) * std::size_t(index.size[2]), -1);
+    const auto slot = [&](const Cell& c) {
+        return (std::size_t(c[0] - index.lo[0]) * std::size_t(index.size[1]) + std::size_t(c[1] - index.lo[1])) *
+                   std::size_t(index.size[2]) + std::size_t(c[2] - index.lo[2]);
+    };
+    for (const Cell& c : cellOf) index.block[slot(c)] = 0;
+    for (std::int32_t& b : index.block)
+        if (b == 0) b = index.count++;  // the table's order is cell order
+        else b = -1;
+    return index;
 }
 
-/// Adds triangle t (box `box`, in cell c) to the obstacles of every neighbouring block whose cell
-/// its box comes within marginMm of.
-void addObstacle(std::int32_t t, const BBox& box, const Cell& c, const std::map<Cell, std::size_t>& index, double blockMm,
-                 double offsetMm, double marginMm, std::vector<Block>& blocks) {
+/// The blocks, other than its own cell's, whose cell triangle t's box (`box`, in cell c) comes
+/// within marginMm of, in neighbour order.
+void obstacleBlocks(const BBox& box, const Cell& c, const CellIndex& index, double blockMm, double offsetMm,
+                    double marginMm, std::vector<std::int32_t>& out) {
+    out.clear();
     // Per axis, which neighbours (-1, +1) the box comes near; most triangles sit inside their
     // cell and skip the 26 lookups (the test below then decides exactly, as before).
     bool reach[3][2];
@@ -52,15 +87,15 @@ void addObstacle(std::int32_t t, const BBox& box, const Cell& c, const std::map<
                 if (!dx && !dy && !dz) continue;
                 if (skip(0, dx) || skip(1, dy) || skip(2, dz)) continue;
                 const Cell nb{c[0] + dx, c[1] + dy, c[2] + dz};
-                const auto it = index.find(nb);
-                if (it == index.end()) continue;
+                const std::int32_t b = index.find(nb);
+                if (b < 0) continue;
                 bool near = true;
                 for (int k = 0; k < 3 && near; ++k) {
                     const double lo = nb[std::size_t(k)] * blockMm + offsetMm - marginMm;
                     const double hi = (nb[std::size_t(k)] + 1) * blockMm + offsetMm + marginMm;
                     near = box.max[k] >= lo && box.min[k] <= hi;
                 }
-                if (near) blocks[it->second].obstacles.push_back(t);
+                if (near) out.push_back(b);
             }
 }
 
@@ -129,23 +164,30 @@ std::vector<Block> makeBlocks(const State& st, double blockMm, double offsetMm, 
     }
     const auto& P = *st.points;
     std::vector<Cell> cellOf;
-    std::map<Cell, std::size_t> index;
-    cellsOfTriangles(st, blockMm, offsetMm, cellOf, index);
-    std::vector<Block> blocks(index.size());
+    const CellIndex index = cellsOfTriangles(st, blockMm, offsetMm, cellOf);
+    std::vector<Block> blocks(std::size_t(index.count));
     std::vector<std::int32_t> owner(P.size(), -1);
     for (std::size_t t = 0; t < nt; ++t) {
-        const std::size_t b = index.at(cellOf[t]);
+        const std::size_t b = std::size_t(index.find(cellOf[t]));
         blocks[b].tris.push_back(std::int32_t(t));
         for (std::int32_t v : st.tris[t]) {
             if (owner[std::size_t(v)] < 0) owner[std::size_t(v)] = std::int32_t(b);
             else if (owner[std::size_t(v)] != std::int32_t(b)) border[std::size_t(v)] = 1;
         }
     }
-    for (std::size_t t = 0; t < nt; ++t) {
-        BBox box;
-        for (std::int32_t v : st.tris[t]) box.extend(P[std::size_t(v)]);
-        addObstacle(std::int32_t(t), box, cellOf[t], index, blockMm, offsetMm, marginMm, blocks);
-    }
+    // Each triangle's neighbouring blocks found in parallel, then appended in triangle order.
+    std::vector<std::vector<std::int32_t>> near(nt);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::vector<std::int32_t> found;
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            BBox box;
+            for (std::int32_t v : st.tris[t]) box.extend(P[std::size_t(v)]);
+            obstacleBlocks(box, cellOf[t], index, blockMm, offsetMm, marginMm, found);
+            near[t] = found;
+        }
+    });
+    for (std::size_t t = 0; t < nt; ++t)
+        for (std::int32_t b : near[t]) blocks[std::size_t(b)].obstacles.push_back(std::int32_t(t));
     return blocks;
 }
 

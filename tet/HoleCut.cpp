@@ -2,12 +2,12 @@
 #include "tet/HoleCut.h"
 
 #include "filters/TriangleGeometry.h"
+#include "tet/InterfaceTriangleIndex.h"
 #include "tet/TetFaceAdjacency.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <queue>
 
 namespace jawmesh {
@@ -37,12 +37,7 @@ std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t x) {
 HoleCutPatch holeCutPatch(const InterfaceComplex& complex, const TetMesh& m, const std::vector<std::array<std::int32_t, 3>>& facets,
                           const std::vector<HoleBall>& holes, bool sourcesAtTheirDistance) {
     HoleCutPatch patch;
-    std::map<std::array<std::int32_t, 3>, std::size_t> triangleOf;
-    for (std::size_t t = 0; t < complex.surface.triangles.size(); ++t) {
-        auto key = complex.surface.triangles[t];
-        std::sort(key.begin(), key.end());
-        triangleOf.emplace(key, t);
-    }
+    const InterfaceTriangleIndex triangleOf = interfaceTriangleIndex(complex);
     const std::size_t nt = m.tets.size();
     const TetFaceAdjacency adj = tetFaceAdjacency(m);
     std::vector<char> near(nt);
@@ -55,7 +50,7 @@ HoleCutPatch holeCutPatch(const InterfaceComplex& complex, const TetMesh& m, con
         if (adj.groupSize(g) != 2) continue;
         const TetFaceRef& f0 = adj.faces[std::size_t(adj.groupStart[g])];
         const TetFaceRef& f1 = adj.faces[std::size_t(adj.groupStart[g]) + 1];
-        if (triangleOf.count(f0.key) || std::binary_search(facets.begin(), facets.end(), f0.key)) continue;
+        if (triangleOf.contains(f0.key) || std::binary_search(facets.begin(), facets.end(), f0.key)) continue;
         next[std::size_t(f0.tet)].push_back(f1.tet);
         next[std::size_t(f1.tet)].push_back(f0.tet);
         if (near[std::size_t(f0.tet)] || near[std::size_t(f1.tet)]) continue;
@@ -68,12 +63,12 @@ HoleCutPatch holeCutPatch(const InterfaceComplex& complex, const TetMesh& m, con
     using Item = std::pair<double, std::int32_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
     for (const TetFaceRef& f : adj.faces) {
-        const auto it = triangleOf.find(f.key);
-        if (it == triangleOf.end()) continue;
+        const std::size_t input = triangleOf.find(f.key);
+        if (input == InterfaceTriangleIndex::npos) continue;
         // An input triangle wound as the tet's outward face points out of the tet, into sides[0]:
         // the tet is on sides[1].
-        const Tri& tri = complex.surface.triangles[it->second];
-        const Label side = complex.sides[it->second][sameWinding(tri, outwardFace(m.tets[std::size_t(f.tet)], f.local)) ? 1 : 0];
+        const Tri& tri = complex.surface.triangles[input];
+        const Label side = complex.sides[input][sameWinding(tri, outwardFace(m.tets[std::size_t(f.tet)], f.local)) ? 1 : 0];
         if (!near[std::size_t(f.tet)]) {
             Label& c = componentLabel[std::size_t(findRoot(parent, f.tet))];
             if (c != kUnset && c != side) {
@@ -119,7 +114,7 @@ HoleCutPatch holeCutPatch(const InterfaceComplex& complex, const TetMesh& m, con
         const TetFaceRef& f0 = adj.faces[std::size_t(adj.groupStart[g])];
         const TetFaceRef& f1 = adj.faces[std::size_t(adj.groupStart[g]) + 1];
         const Label l0 = label[std::size_t(f0.tet)], l1 = label[std::size_t(f1.tet)];
-        if (l0 == l1 || l0 == kUnset || l1 == kUnset || triangleOf.count(f0.key) ||
+        if (l0 == l1 || l0 == kUnset || l1 == kUnset || triangleOf.contains(f0.key) ||
             std::binary_search(facets.begin(), facets.end(), f0.key))
             continue;
         const auto face = outwardFace(m.tets[std::size_t(f0.tet)], f0.local);  // normal out of f0's tet, into f1's

@@ -3,27 +3,19 @@
 #include "tet/LabelFromSides.h"
 
 #include "io/Error.h"
+#include "tet/InterfaceTriangleIndex.h"
 #include "tet/TetFaceAdjacency.h"
 #include "tet/TetStageName.h"
 
 #include <algorithm>
-#include <map>
+#include <cstdint>
+#include <vector>
 
 namespace jawmesh {
 namespace {
 
 
-using TriangleIndex = std::map<std::array<std::int32_t, 3>, std::size_t>;  // sorted node triple -> input triangle
-
-TriangleIndex triangleIndex(const InterfaceComplex& plc) {
-    TriangleIndex triangleOf;
-    for (std::size_t t = 0; t < plc.surface.triangles.size(); ++t) {
-        auto key = plc.surface.triangles[t];
-        std::sort(key.begin(), key.end());
-        triangleOf.emplace(key, t);
-    }
-    return triangleOf;
-}
+using TriangleIndex = InterfaceTriangleIndex;
 
 /// Per tet, the smallest tet of its component: tets are joined across every face shared by two of
 /// them that is neither an input triangle nor one of TetGen's subfaces.
@@ -38,7 +30,7 @@ std::vector<std::int32_t> componentRoots(const TetFaceAdjacency& adj, std::size_
     for (std::size_t g = 0; g < adj.groupCount(); ++g) {
         if (adj.groupSize(g) != 2) continue;
         const auto& f0 = adj.faces[std::size_t(adj.groupStart[g])];
-        if (triangleOf.count(f0.key) || std::binary_search(facets.begin(), facets.end(), f0.key)) continue;
+        if (triangleOf.contains(f0.key) || std::binary_search(facets.begin(), facets.end(), f0.key)) continue;
         const std::int32_t a = find(f0.tet), b = find(adj.faces[std::size_t(adj.groupStart[g]) + 1].tet);
         if (a != b) parent[std::size_t(std::max(a, b))] = std::min(a, b);
     }
@@ -55,19 +47,19 @@ std::vector<Label> componentLabels(const InterfaceComplex& plc, const TetMesh& m
                                    const TriangleIndex& triangleOf, const std::vector<std::int32_t>& root) {
     std::vector<Label> component(m.tets.size(), kUnset);
     for (const TetFaceRef& f : adj.faces) {
-        const auto it = triangleOf.find(f.key);
-        if (it == triangleOf.end()) continue;
-        const Tri& tri = plc.surface.triangles[it->second];
+        const std::size_t input = triangleOf.find(f.key);
+        if (input == TriangleIndex::npos) continue;
+        const Tri& tri = plc.surface.triangles[input];
         // on the normal side unless the triangle is wound as the tet's outward face (exact: the
         // raw tets can be flat)
         const bool front = !sameWinding(tri, outwardFace(m.tets[std::size_t(f.tet)], f.local));
-        const Label side = plc.sides[it->second][front ? 0 : 1];
+        const Label side = plc.sides[input][front ? 0 : 1];
         Label& c = component[std::size_t(root[std::size_t(f.tet)])];
         if (c == kUnset) c = side;
         if (c == side) continue;
         const auto& v = plc.surface.vertices;
         const Vec3 p = (v[std::size_t(tri[0])] + v[std::size_t(tri[1])] + v[std::size_t(tri[2])]) / 3.0;
-        throw Error(kTetStageName, "the tets next to interface triangle " + std::to_string(it->second) + " near (" + tetgenNumber(p.x()) +
+        throw Error(kTetStageName, "the tets next to interface triangle " + std::to_string(input) + " near (" + tetgenNumber(p.x()) +
                                ", " + tetgenNumber(p.y()) + ", " + tetgenNumber(p.z()) +
                                ") belong to a component that other triangles give " + labelName(c) + ", but this one gives " +
                                labelName(side) + ": a region boundary is open (TetGen lost a facet?)");
@@ -79,7 +71,7 @@ std::vector<Label> componentLabels(const InterfaceComplex& plc, const TetMesh& m
 
 void labelFromSides(const InterfaceComplex& plc, TetgenMesh& raw) {
     TetMesh& m = raw.mesh;
-    const TriangleIndex triangleOf = triangleIndex(plc);
+    const TriangleIndex triangleOf = interfaceTriangleIndex(plc);
     const TetFaceAdjacency adj = tetFaceAdjacency(m);
     const std::vector<std::int32_t> root = componentRoots(adj, m.tets.size(), triangleOf, raw.facets);
     const std::vector<Label> component = componentLabels(plc, m, adj, triangleOf, root);
