@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -67,9 +68,12 @@ nlohmann::json writeEvalReport(const TetMesh& mesh, const JawSurfaces* input, co
             const double px = std::max(arch->widthMm, arch->heightMm) / kArchSectionPixels;
             sections.push_back({"arch", "", *arch, px, {}});
         }
-        for (int unn : teeth)
-            if (auto p = toothSectionPlane(mesh, unn))
-                sections.push_back({"tooth_" + std::to_string(unn), "", *p, p->heightMm / kToothSectionPixels, {}});
+        const std::vector<int> unns(teeth.begin(), teeth.end());
+        std::vector<std::optional<SectionPlane>> planes(unns.size());
+        tbb::parallel_for(std::size_t{0}, unns.size(), [&](std::size_t i) { planes[i] = toothSectionPlane(mesh, unns[i]); });
+        for (std::size_t i = 0; i < unns.size(); ++i)
+            if (const auto& p = planes[i])
+                sections.push_back({"tooth_" + std::to_string(unns[i]), "", *p, p->heightMm / kToothSectionPixels, {}});
         tbb::parallel_for(std::size_t{0}, sections.size(), [&](std::size_t i) {
             Section& s = sections[i];
             s.png = encodePng(colourSection(rasterizeSection(mesh, s.plane, s.pixelMm)));

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <iterator>
 #include <map>
+#include <set>
 
 namespace jawmesh {
 namespace {
@@ -166,14 +167,17 @@ std::optional<SectionPlane> toothSectionPlane(const TetMesh& mesh, int unn) {
     const Moments m = tetMoments(mesh, [&](Label l) { return l == tooth; });
     if (m.volume <= 0) return std::nullopt;
     const Vec3 up = occlusalAxis(mesh, unn, m);
-    // The arch tangent from the neighbouring teeth in UNN order (UNN runs along the arch).
-    std::map<int, Vec3> centres;
+    // The arch tangent from the neighbouring teeth in UNN order (UNN runs along the arch); only
+    // those two are measured (each is a pass over the mesh).
+    std::set<int> unns;
     for (Label l : mesh.labels)
-        if (isKind(l, LabelKind::Tooth) && !centres.count(labelUnn(l))) centres[labelUnn(l)] = Vec3::Zero();
-    for (auto& [u, c] : centres) c = u == unn ? m.centroid : tetMoments(mesh, [&](Label l) { return l == toothLabel(u); }).centroid;
-    const auto self = centres.find(unn);
-    const Vec3 before = self == centres.begin() ? self->second : std::prev(self)->second;
-    const Vec3 after = std::next(self) == centres.end() ? self->second : std::next(self)->second;
+        if (isKind(l, LabelKind::Tooth)) unns.insert(labelUnn(l));
+    const auto self = unns.find(unn);
+    const auto centreOf = [&](int u) {
+        return u == unn ? m.centroid : tetMoments(mesh, [&](Label l) { return l == toothLabel(u); }).centroid;
+    };
+    const Vec3 before = centreOf(self == unns.begin() ? unn : *std::prev(self));
+    const Vec3 after = centreOf(std::next(self) == unns.end() ? unn : *std::next(self));
     Vec3 tangent = after - before;
     tangent -= tangent.dot(up) * up;
     Vec3 right = up.cross(tangent);  // buccolingual
