@@ -5,6 +5,7 @@
 #include "fe/ExteriorFaces.h"
 #include "fe/QuadraticTets.h"
 #include "io/AtomicFile.h"
+#include "io/NumberText.h"
 #include "io/Error.h"
 
 #include <map>
@@ -69,7 +70,14 @@ void writeCalculixDeck(const TetMesh& mesh, const FeScenario& s, const MaterialT
         out << "*HEADING\njawmesh " << s.name << " scenario\n";
         out << "*NODE, NSET=NALL\n";
         for (std::size_t v = 0; v < nodes.size(); ++v)
-            if (used[v]) out << v + 1 << ", " << nodes[v].x() << ", " << nodes[v].y() << ", " << nodes[v].z() << "\n";
+            if (used[v]) {
+                out << v + 1;
+                for (int i = 0; i < 3; ++i) {
+                    out << ", ";
+                    writeNumber(out, nodes[v][i], 12);
+                }
+                out << '\n';
+            }
         for (const auto& [label, tets] : tetsOf) {
             out << "*ELEMENT, TYPE=" << (o.order == 2 ? "C3D10" : "C3D4") << ", ELSET=" << labelName(label) << "\n";
             for (std::size_t t : tets) {

@@ -4,6 +4,7 @@
 #include "fe/ExteriorFaces.h"
 #include "fe/QuadraticTets.h"
 #include "io/AtomicFile.h"
+#include "io/NumberText.h"
 #include "io/Error.h"
 
 #include <map>
@@ -13,7 +14,13 @@
 namespace jawmesh {
 namespace {
 
-void writeVec(std::ostream& out, const Vec3& v) { out << v.x() << "," << v.y() << "," << v.z(); }
+/// At the file's precision (15 digits).
+void writeVec(std::ostream& out, const Vec3& v) {
+    for (int i = 0; i < 3; ++i) {
+        if (i) out << ',';
+        writeNumber(out, v[i], 15);
+    }
+}
 
 /// A surface as tri3 (or tri6 with the faces' mid-edge nodes, FEBio's order: corners, then the
 /// mid-nodes of edges 01, 12, 20).

@@ -2,10 +2,10 @@
 #include "io/GmshWriter.h"
 
 #include "io/AtomicFile.h"
+#include "io/NumberText.h"
 #include "io/Error.h"
 
 #include <algorithm>
-#include <charconv>
 #include <functional>
 #include <map>
 #include <ostream>
@@ -29,9 +29,7 @@ public:
         if (binary_) {
             raw(v);
         } else {
-            char buf[32];
-            const auto res = std::to_chars(buf, buf + sizeof buf, v);  // shortest exact round trip
-            token(std::string(buf, res.ptr));
+            token(numberText(v));  // shortest exact round trip
         }
     }
     void endRecord() {

@@ -3,18 +3,11 @@
 
 #include "io/AtomicFile.h"
 #include "io/Error.h"
+#include "io/NumberText.h"
 
-#include <charconv>
 #include <ostream>
 
 namespace jawmesh {
-namespace {
-void writeReal(std::ostream& out, double v) {
-    char buf[32];
-    const auto res = std::to_chars(buf, buf + sizeof buf, v);
-    out.write(buf, res.ptr - buf);
-}
-}  // namespace
 
 void writeMedit(const TetMesh& mesh, const std::string& path, const MeditTriangles* triangles) {
     if (mesh.labels.size() != mesh.tets.size())
@@ -35,9 +28,9 @@ void writeMedit(const TetMesh& mesh, const std::string& path, const MeditTriangl
     writeFileAtomically(path, [&](std::ostream& out) {
         out << "MeshVersionFormatted 2\nDimension 3\n\nVertices\n" << mesh.nodes.size() << '\n';
         for (const Vec3& p : mesh.nodes) {
-            writeReal(out, p.x()), out << ' ';
-            writeReal(out, p.y()), out << ' ';
-            writeReal(out, p.z()), out << " 0\n";
+            writeNumber(out, p.x()), out << ' ';
+            writeNumber(out, p.y()), out << ' ';
+            writeNumber(out, p.z()), out << " 0\n";
         }
         out << "\nTetrahedra\n" << mesh.tets.size() << '\n';
         for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
