@@ -4,6 +4,7 @@
 #include "filters/BlockSimplifier.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -17,22 +18,14 @@ namespace {
 
 using Cell = std::array<int, 3>;
 
-/// The cells met, numbered in cell order (x, then y, then z: deterministic), looked up in a dense
-/// table over their range: a map's lookups, 26 per triangle near a block's border (most of them:
-/// the margin is most of a block), were a second of serial time per pass on the shared mandible.
+/// The cells met, in cell order (x, then y, then z: deterministic), searched by bisection in one
+/// small array: a map's lookups, 26 per triangle near a block's border (most of them: the margin
+/// is most of a block), were a second of serial time per pass on the shared mandible.
 struct CellIndex {
-    Cell lo{0, 0, 0};
-    std::array<int, 3> size{0, 0, 0};
-    std::vector<std::int32_t> block;  ///< per cell of the range, its block or -1
-    std::int32_t count = 0;
+    std::vector<Cell> cells;  ///< sorted, unique; block b is cells[b]
     std::int32_t find(const Cell& c) const {
-        std::size_t at = 0;
-        for (int k = 0; k < 3; ++k) {
-            const int i = c[std::size_t(k)] - lo[std::size_t(k)];
-            if (i < 0 || i >= size[std::size_t(k)]) return -1;
-            at = at * std::size_t(size[std::size_t(k)]) + std::size_t(i);
-        }
-        return block[at];
+        const auto it = std::lower_bound(cells.begin(), cells.end(), c);
+        return it != cells.end() && *it == c ? std::int32_t(it - cells.begin()) : -1;
     }
 };
 
@@ -49,21 +42,9 @@ CellIndex cellsOfTriangles(const State& st, double blockMm, double offsetMm, std
         }
     });
     CellIndex index;
-    if (nt == 0) return index;
-    Cell hi = cellOf[0];
-    index.lo = cellOf[0];
-    for (const Cell& c : cellOf)
-        for (std::size_t k = 0; k < 3; ++k) index.lo[k] = std::min(index.lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
-    for (std::size_t k = 0; k < 3; ++k) index.size[k] = hi[k] - index.lo[k] + 1;
-    index.block.assign(std::size_t(index.size[0]) * std::size_t(index.size[1]) * std::size_t(index.size[2]), -1);
-    const auto slot = [&](const Cell& c) {
-        return (std::size_t(c[0] - index.lo[0]) * std::size_t(index.size[1]) + std::size_t(c[1] - index.lo[1])) *
-                   std::size_t(index.size[2]) + std::size_t(c[2] - index.lo[2]);
-    };
-    for (const Cell& c : cellOf) index.block[slot(c)] = 0;
-    for (std::int32_t& b : index.block)
-        if (b == 0) b = index.count++;  // the table's order is cell order
-        else b = -1;
+    index.cells = cellOf;
+    tbb::parallel_sort(index.cells.begin(), index.cells.end());
+    index.cells.erase(std::unique(index.cells.begin(), index.cells.end()), index.cells.end());
     return index;
 }
 
@@ -165,7 +146,7 @@ std::vector<Block> makeBlocks(const State& st, double blockMm, double offsetMm, 
     const auto& P = *st.points;
     std::vector<Cell> cellOf;
     const CellIndex index = cellsOfTriangles(st, blockMm, offsetMm, cellOf);
-    std::vector<Block> blocks(std::size_t(index.count));
+    std::vector<Block> blocks(index.cells.size());
     std::vector<std::int32_t> owner(P.size(), -1);
     for (std::size_t t = 0; t < nt; ++t) {
         const std::size_t b = std::size_t(index.find(cellOf[t]));
