@@ -5,8 +5,8 @@
 #include "fe/ExteriorFaces.h"
 #include "fe/QuadraticTets.h"
 #include "io/AtomicFile.h"
-#include "io/NumberText.h"
 #include "io/Error.h"
+#include "io/NumberText.h"
 
 #include <map>
 #include <ostream>

@@ -14,12 +14,9 @@
 namespace jawmesh {
 namespace {
 
-
-using TriangleIndex = InterfaceTriangleIndex;
-
 /// Per tet, the smallest tet of its component: tets are joined across every face shared by two of
 /// them that is neither an input triangle nor one of TetGen's subfaces.
-std::vector<std::int32_t> componentRoots(const TetFaceAdjacency& adj, std::size_t tets, const TriangleIndex& triangleOf,
+std::vector<std::int32_t> componentRoots(const TetFaceAdjacency& adj, std::size_t tets, const InterfaceTriangleIndex& triangleOf,
                                          const std::vector<std::array<std::int32_t, 3>>& facets) {
     std::vector<std::int32_t> parent(tets);
     for (std::size_t t = 0; t < tets; ++t) parent[t] = std::int32_t(t);
@@ -44,11 +41,11 @@ constexpr Label kUnset = -1;
 /// Per component root, the label its bounding input triangles give it (kUnset: none bounds it).
 /// Throws when two of them disagree.
 std::vector<Label> componentLabels(const InterfaceComplex& plc, const TetMesh& m, const TetFaceAdjacency& adj,
-                                   const TriangleIndex& triangleOf, const std::vector<std::int32_t>& root) {
+                                   const InterfaceTriangleIndex& triangleOf, const std::vector<std::int32_t>& root) {
     std::vector<Label> component(m.tets.size(), kUnset);
     for (const TetFaceRef& f : adj.faces) {
         const std::size_t input = triangleOf.find(f.key);
-        if (input == TriangleIndex::npos) continue;
+        if (input == InterfaceTriangleIndex::npos) continue;
         const Tri& tri = plc.surface.triangles[input];
         // on the normal side unless the triangle is wound as the tet's outward face (exact: the
         // raw tets can be flat)
@@ -71,7 +68,7 @@ std::vector<Label> componentLabels(const InterfaceComplex& plc, const TetMesh& m
 
 void labelFromSides(const InterfaceComplex& plc, TetgenMesh& raw) {
     TetMesh& m = raw.mesh;
-    const TriangleIndex triangleOf = interfaceTriangleIndex(plc);
+    const InterfaceTriangleIndex triangleOf = interfaceTriangleIndex(plc);
     const TetFaceAdjacency adj = tetFaceAdjacency(m);
     const std::vector<std::int32_t> root = componentRoots(adj, m.tets.size(), triangleOf, raw.facets);
     const std::vector<Label> component = componentLabels(plc, m, adj, triangleOf, root);
