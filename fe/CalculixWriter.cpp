@@ -8,9 +8,9 @@
 #include "io/Error.h"
 #include "io/NumberText.h"
 
+#include <algorithm>
 #include <map>
 #include <ostream>
-#include <set>
 
 namespace jawmesh {
 namespace {
@@ -92,13 +92,15 @@ void writeCalculixDeck(const TetMesh& mesh, const FeScenario& s, const MaterialT
             }
         }
         for (const auto& [label, tets] : tetsOf) {
-            std::set<std::int32_t> regionNodes;
+            std::vector<std::int32_t> regionNodes;  // sorted and unique below (a std::set of them took 0.2 s)
             for (std::size_t t : tets) {
-                if (o.order == 2) regionNodes.insert(quadratic.tets[t].begin(), quadratic.tets[t].end());
-                else regionNodes.insert(mesh.tets[t].begin(), mesh.tets[t].end());
+                if (o.order == 2) regionNodes.insert(regionNodes.end(), quadratic.tets[t].begin(), quadratic.tets[t].end());
+                else regionNodes.insert(regionNodes.end(), mesh.tets[t].begin(), mesh.tets[t].end());
             }
+            std::sort(regionNodes.begin(), regionNodes.end());
+            regionNodes.erase(std::unique(regionNodes.begin(), regionNodes.end()), regionNodes.end());
             out << "*NSET, NSET=" << labelName(label) << "\n";
-            writeIdList(out, {regionNodes.begin(), regionNodes.end()});
+            writeIdList(out, regionNodes);
         }
         for (const FixedSet& f : s.fixed) {
             out << "*NSET, NSET=" << f.name << "\n";
