@@ -6,6 +6,7 @@
 #include "tet/InterfaceTriangleIndex.h"
 #include "tet/TetFaceAdjacency.h"
 #include "tet/TetStageName.h"
+#include "tet/UnusedNodes.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -79,32 +80,18 @@ void labelFromSides(const InterfaceComplex& plc, TetgenMesh& raw) {
     }
 }
 
-/// Drops unlabeled tets and unused nodes (keeping node order).
+/// Drops unlabeled tets, then the nodes no tet uses (tet/UnusedNodes.h), keeping the order of both.
 std::size_t keepLabeled(TetMesh& m) {
-    TetMesh kept;
-    std::vector<std::int32_t> newIndex(m.nodes.size(), -1);
-    std::size_t removed = 0;
-    for (std::size_t t = 0; t < m.tets.size(); ++t) {
-        if (m.labels[t] == kOutsideLabel) {
-            ++removed;
-            continue;
-        }
-        for (auto v : m.tets[t]) newIndex[static_cast<std::size_t>(v)] = 0;
-    }
-    std::int32_t next = 0;
-    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
-        if (newIndex[i] < 0) continue;
-        newIndex[i] = next++;
-        kept.nodes.push_back(m.nodes[i]);
-    }
+    std::size_t kept = 0;
     for (std::size_t t = 0; t < m.tets.size(); ++t) {
         if (m.labels[t] == kOutsideLabel) continue;
-        Tet e = m.tets[t];
-        for (auto& v : e) v = newIndex[static_cast<std::size_t>(v)];
-        kept.tets.push_back(e);
-        kept.labels.push_back(m.labels[t]);
+        m.tets[kept] = m.tets[t];
+        m.labels[kept++] = m.labels[t];
     }
-    m = std::move(kept);
+    const std::size_t removed = m.tets.size() - kept;
+    m.tets.resize(kept);
+    m.labels.resize(kept);
+    dropUnusedNodes(m);
     return removed;
 }
 

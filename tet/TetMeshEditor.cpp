@@ -4,6 +4,7 @@
 #include "tet/ElementQuality.h"
 #include "tet/SliverScore.h"
 #include "tet/TetFaceAdjacency.h"
+#include "tet/UnusedNodes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -188,6 +189,7 @@ void TetMeshEditor::finish() {
             out.labels.push_back(mesh_.labels[t]);
         }
     mesh_ = std::move(out);
+    dropUnusedNodes(mesh_);
 }
 
 }  // namespace jawmesh

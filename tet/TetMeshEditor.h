@@ -85,7 +85,8 @@ public:
     /// The innermost open checkpoint.
     const Checkpoint& innermost() const { return checkpoints_.back(); }
 
-    /// Writes the alive tets back into the mesh (its nodes stay as they are); the editor is done.
+    /// Writes the alive tets back into the mesh; the nodes that no alive tet uses (an edit took
+    /// their last tets) are dropped, the others keep their order. The editor is done.
     void finish();
 
 private:

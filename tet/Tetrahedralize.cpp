@@ -177,10 +177,6 @@ bool attempt(Ladder& l, const InterfaceComplex& complex, std::size_t r, bool onl
     if (raw.mesh.tets.empty()) throw Error(kTetStageName, "no tetrahedron received a label: are the seeds inside their regions?");
     SliverStats slivers;
     if (o.improveSlivers) improveSlivers(raw.mesh, o.slivers, &slivers, l.progress);
-    // The improver's edge removals can leave nodes that no tet uses (52 on the shared mandible):
-    // dropped, so that run.json, the .msh, the .vtu and the decks (of the run or of `jawmesh fe`
-    // on its .msh) count and number the same nodes.
-    keepLabeled(raw.mesh);
     const QualityStats q = measureQuality(raw.mesh, o.slivers.targetMinDihedralDeg);
     if (!isBetter(l, q, onlyWhenItMeetsTheTarget)) return false;
     l.best = std::move(raw.mesh);

@@ -42,9 +42,7 @@ TEST(SurfacesToLabelVolume, SegmentedPdlsFillTheSocketGapAndTheirThicknessBelowT
     jaw.bone = test::boxMesh(Vec3(-4, -3, -4.5), Vec3(4, 3, 0));
     SurfaceMesh socket = test::icosphere(1.8, 4, c24);
     for (Tri& t : socket.triangles) std::swap(t[1], t[2]);  // inward: a cavity of the block
-    const int offset = int(jaw.bone.vertices.size());
-    jaw.bone.vertices.insert(jaw.bone.vertices.end(), socket.vertices.begin(), socket.vertices.end());
-    for (Tri t : socket.triangles) jaw.bone.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    append(jaw.bone, socket);
     jaw.teeth[24] = test::icosphere(1.5, 4, c24);
     jaw.teeth[25] = test::icosphere(1.0, 4, c25);
     JawCase jc;
