@@ -87,6 +87,10 @@ int compareRegionWedges(const jawmesh::InterfaceComplex& input, const jawmesh::T
     jawmesh::TetStats st;
     jawmesh::InterfaceComplex repaired;
     const jawmesh::InterfaceComplex& c = jawmesh::repairHoles(input, repaired, jawmesh::seedVolumeBounds(input, o), st);
+    std::printf("hole repair: %zu filled (%zu cut from tets), %zu left, %zu open edges after\n", st.holeRepair.filled.size(),
+                std::size_t(std::count_if(st.holeRepair.filled.begin(), st.holeRepair.filled.end(),
+                                          [](const jawmesh::FilledHole& f) { return f.how == jawmesh::HoleRepair::TetCut; })),
+                st.holeRepair.left.size(), jawmesh::openRegionEdges(c).size());
     for (const double deg : {5.0, 10.0, 15.0, 20.0}) {
         const jawmesh::RegionWedgeStats a = jawmesh::measureRegionWedges(input, deg), b = jawmesh::measureRegionWedges(c, deg);
         std::printf("edges with a region wedge under %.0f deg: given %zu (smallest %.2f), after the hole repair %zu (smallest %.2f)\n", deg,
@@ -156,6 +160,9 @@ int main(int argc, char** argv) {
             std::printf("%s/%s: %zu edges, %.2f mm, at (%.2f, %.2f, %.2f), %s, %zu triangles\n", jawmesh::labelName(f.pair[0]).c_str(),
                         jawmesh::labelName(f.pair[1]).c_str(), f.boundaryEdges, f.diameterMm, f.centre.x(), f.centre.y(), f.centre.z(),
                         jawmesh::holeRepairName(f.how), f.triangles);
+        for (const jawmesh::FilledHole& f : h.left)
+            std::printf("left %s/%s: %zu edges, %.2f mm, at (%.2f, %.2f, %.2f)\n", jawmesh::labelName(f.pair[0]).c_str(),
+                        jawmesh::labelName(f.pair[1]).c_str(), f.boundaryEdges, f.diameterMm, f.centre.x(), f.centre.y(), f.centre.z());
         std::printf("%zu filled, %zu left, %zu stray edges, %zu open edges after, %.2f s\n", h.filled.size(), h.left.size(), h.strayEdges,
                     jawmesh::openRegionEdges(c).size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - h0).count());
         return 0;

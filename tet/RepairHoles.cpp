@@ -7,6 +7,7 @@
 #include "filters/PatchWedgeOpening.h"
 #include "io/Error.h"
 #include "tet/HoleCut.h"
+#include "tet/HolePoints.h"
 #include "tet/TetgenAdapter.h"
 
 #include <limits>
@@ -70,14 +71,18 @@ void addPatch(InterfaceComplex& c, const HoleCutPatch& patch, const TetMesh& mes
 }
 
 /// The holes no local triangulation closed (stats.left) are patched with tet faces: a quick
-/// tetrahedralization of the open complex (no quality bound, in a child process, the convex hull
-/// kept so the holes have tets to cut), labeled as tet/HoleCut.h says in a ball around each hole
-/// (around its loop's centroid). The patch is taken only when each of its faces lies in such a
-/// ball: a repair is local or it is not made (then c and stats stay as they are).
+/// tetrahedralization of the open complex with points through the holes (tet/HolePoints.h; no
+/// quality bound, in a child process, the convex hull kept so the holes have tets to cut),
+/// labeled as tet/HoleCut.h says in a ball around each hole (around its loop's centroid). The
+/// patch is taken only when each of its faces lies in such a ball: a repair is local or it is not
+/// made (then c and stats stay as they are).
 void patchHolesFromTets(InterfaceComplex& c, const std::vector<double>& seedVolumeBoundsMm3, const HoleCutWay& way,
                         HoleFillStats& stats, std::uint64_t& childPeakBytes) {
     const TetgenRun run{way.switches, kTetgenDefaultOptMaxDihedralDeg, seedVolumeBoundsMm3};
-    const TetgenMesh raw = runTetgenInChild(c, run, childPeakBytes);
+    InterfaceComplex withPoints = c;  // the points are TetGen's input points after c's vertices
+    const std::vector<Vec3> points = pointsInHoles(c.surface, stats.left);
+    withPoints.surface.vertices.insert(withPoints.surface.vertices.end(), points.begin(), points.end());
+    const TetgenMesh raw = runTetgenInChild(withPoints, run, childPeakBytes);
     std::vector<HoleBall> balls;
     for (const FilledHole& h : stats.left)
         balls.push_back({h.centre, way.inBalls ? kHoleBallPerDiameter * h.diameterMm : std::numeric_limits<double>::infinity()});

@@ -7,7 +7,9 @@
 #include "filters/PatchWedgeOpening.h"
 #include "filters/RegionWedges.h"
 #include "filters/SelfIntersections.h"
+#include "filters/TriangleGeometry.h"
 #include "io/Error.h"
+#include "tet/HolePoints.h"
 #include "tet/TetTestComplexes.h"
 #include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
@@ -16,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 using namespace jawmesh;
@@ -261,4 +264,45 @@ TEST(HoleRepair, OpenEdgesOnNoLoopKeepTheClearError) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("the interface surface has holes"), std::string::npos) << e.what();
     }
+}
+
+/// The jaw block with the 3 x 3 squares of its bottom face at [9, 12] x [4, 7] taken out: a hole
+/// whose loop has 12 edges.
+InterfaceComplex jawBlockWithWideHole() {
+    InterfaceComplex c = complexFromVoxels(jawBlockScene());
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) removeBottomSquare(c, 9 + i, 4 + j);
+    return c;
+}
+
+TEST(HoleRepair, PointsThroughAHoleClearTheSurfaceAndFillItsBall) {
+    const InterfaceComplex open = jawBlockWithWideHole();
+    InterfaceComplex patched = open;
+    const HoleFillStats found = fillSurfaceHoles(patched);  // only the hole's record is used
+    ASSERT_EQ(found.filled.size(), 1u);
+    const FilledHole& hole = found.filled.front();
+    ASSERT_EQ(hole.boundaryEdges, 12u);
+    EXPECT_TRUE(pointsInHoles(open.surface, {}).empty());
+    const std::vector<Vec3> through = pointsInHoles(open.surface, {hole});
+    const double spacing = kHolePointSpacing * M_PI * hole.diameterMm / double(hole.boundaryEdges);
+    const double radius = 0.5 * hole.diameterMm + 2.0 * spacing;
+    ASSERT_FALSE(through.empty());
+    std::size_t below = 0, above = 0;
+    for (const Vec3& p : through) {
+        EXPECT_LE((p - hole.centre).norm(), radius + 1e-12);
+        double nearest2 = std::numeric_limits<double>::infinity();
+        for (const Tri& t : open.surface.triangles)
+            nearest2 = std::min(nearest2, squaredDistanceToTriangle(p, open.surface.vertices[std::size_t(t[0])],
+                                                                    open.surface.vertices[std::size_t(t[1])], open.surface.vertices[std::size_t(t[2])]));
+        EXPECT_GE(std::sqrt(nearest2), 0.5 * spacing - 1e-12) << p.transpose();
+        below += p.z() < 0;
+        above += p.z() > 0;
+    }
+    // Through the hole: points on both sides of the face, and the lattice's centre in the opening.
+    EXPECT_GT(below, 0u);
+    EXPECT_GT(above, 0u);
+    EXPECT_TRUE(std::any_of(through.begin(), through.end(), [](const Vec3& p) {
+        return std::abs(p.z()) < 1e-12 && p.x() > 9 && p.x() < 12 && p.y() > 4 && p.y() < 7;
+    }));
+    EXPECT_EQ(pointsInHoles(open.surface, {hole}), through);  // deterministic
 }
