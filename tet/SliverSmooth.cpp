@@ -1,9 +1,6 @@
 // Smoothing and new-node placement for the sliver improver (tet/SliverSmooth.h).
 #include "tet/SliverSmooth.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -101,21 +98,17 @@ std::pair<Vec3, Objective> bestPosition(const TetMeshEditor& mesh, const std::ve
     double h = 0.25 * shortest;
     Vec3 p = start;
     for (int iter = 0; iter < 60 && h > 1e-4 * shortest; ++iter) {
-        // the 14 trial positions are scored in parallel, then compared in order (as one thread would)
-        std::array<Vec3, 14> trial;
-        std::array<Objective, 14> trialScore;
-        for (std::size_t k = 0; k < trial.size(); ++k) trial[k] = p + h * dirs[k];
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, trial.size(), 7), [&](const auto& r) {
-            for (std::size_t k = r.begin(); k != r.end(); ++k)
-                trialScore[k] = objectiveWith(star, trial[k], target, best.hopelessBelow(trial.size()));
-        });
+        // the 14 trial positions in order, each scored only as far as it can still beat the best so far
         Objective stepBest = best;
         Vec3 stepP = p;
-        for (std::size_t k = 0; k < trial.size(); ++k)
-            if (trialScore[k].betterThan(stepBest)) {
-                stepBest = trialScore[k];
-                stepP = trial[k];
+        for (const Vec3& dir : dirs) {
+            const Vec3 trial = p + h * dir;
+            const Objective o = objectiveWith(star, trial, target, stepBest.hopelessBelow(dirs.size()));
+            if (o.betterThan(stepBest)) {
+                stepBest = o;
+                stepP = trial;
             }
+        }
         if (stepBest.betterThan(best)) {
             best = stepBest;
             p = stepP;
