@@ -15,14 +15,18 @@
 namespace jawmesh {
 
 /// Per hole, the points of a cubic lattice (centred on the hole, spacing kHolePointSpacing times the
-/// loop's mean edge, estimated as pi * diameter / edges) within the ball of radius half the
-/// diameter plus two spacings, leaving out those nearer than half a spacing to a triangle of
-/// `surface` (a point next to the surface would only make flat tets). In lattice order, hole by
-/// hole: deterministic. Cost: O(T) per hole plus the points times the triangles near the hole.
+/// loop's mean edge, estimated as pi * diameter / edges, but at least the diameter over
+/// kMaxHoleLatticeSpans) within the ball of radius half the diameter plus two spacings, leaving
+/// out those nearer than half a spacing to a triangle of `surface` (a point next to the surface
+/// would only make flat tets). In lattice order, hole by hole: deterministic. Cost: O(T) per hole
+/// plus at most 37^3 lattice points, each against the triangles in its cell.
 std::vector<Vec3> pointsInHoles(const SurfaceMesh& surface, const std::vector<FilledHole>& holes);
 
 /// Lattice spacing over the loop's mean edge: 2 left no new region wedge under 20 deg on the
 /// bone-holes surface (1: the same, the quick tetrahedralization four times as long).
 constexpr double kHolePointSpacing = 2.0;
+/// A hole is never more lattice spacings across than this (a loop of many short edges would
+/// otherwise fill its ball with millions of points).
+constexpr double kMaxHoleLatticeSpans = 32.0;
 
 }  // namespace jawmesh

@@ -305,4 +305,13 @@ TEST(HoleRepair, PointsThroughAHoleClearTheSurfaceAndFillItsBall) {
         return std::abs(p.z()) < 1e-12 && p.x() > 9 && p.x() < 12 && p.y() > 4 && p.y() < 7;
     }));
     EXPECT_EQ(pointsInHoles(open.surface, {hole}), through);  // deterministic
+
+    // A loop of very many short edges: the lattice stays kMaxHoleLatticeSpans across the hole.
+    FilledHole fine = hole;
+    fine.boundaryEdges = 100000;
+    const std::vector<Vec3> capped = pointsInHoles(open.surface, {fine});
+    const double cappedSpacing = hole.diameterMm / kMaxHoleLatticeSpans;
+    EXPECT_GT(capped.size(), through.size());
+    EXPECT_LE(capped.size(), std::size_t(37 * 37 * 37));
+    for (const Vec3& p : capped) EXPECT_LE((p - hole.centre).norm(), 0.5 * hole.diameterMm + 2.0 * cappedSpacing + 1e-12);
 }
