@@ -191,8 +191,12 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     log.run(jaw + ": fe decks", progress, [&] {
         try {
             // Relative to the jaw folder: the folder may be renamed afterwards (a batch does).
-            for (const std::string& p : writeTippingDecks(mesh, caseAxes, outJawDir))
+            std::vector<std::string> notes;
+            for (const std::string& p : writeTippingDecks(mesh, caseAxes, outJawDir, {}, &notes))
                 record["fe_decks"].push_back(std::filesystem::path(p).lexically_relative(outJawDir).generic_string());
+            // a load direction nobody should rely on without a look
+            for (const std::string& n : notes)
+                if (n.find("uncertain") != std::string::npos) record["warnings"].push_back(n);
         } catch (const Error& e) {
             record["warnings"].push_back(std::string("tipping decks not written: ") + e.what());
         }

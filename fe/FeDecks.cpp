@@ -70,7 +70,8 @@ std::vector<std::string> writeScenarioDecks(const TetMesh& given, FeScenario& s,
 }
 
 std::vector<std::string> writeTippingDecks(const TetMesh& mesh, const std::map<int, ToothAxes>& given,
-                                           const std::string& outJawDir, const FeDeckOptions& o) {
+                                           const std::string& outJawDir, const FeDeckOptions& o,
+                                           std::vector<std::string>* notesOut) {
     std::vector<std::string> notes;
     const std::map<int, ToothAxes> axes = axesForMesh(mesh, given, &notes);
     FeScenario s = tippingScenario(mesh, axes, o.tipping);
@@ -79,6 +80,7 @@ std::vector<std::string> writeTippingDecks(const TetMesh& mesh, const std::map<i
     const std::string axesPath = outJawDir + "/simulation/tipping_axes.json";
     writeToothAxes(axes, axesPath);
     written.push_back(axesPath);
+    if (notesOut) *notesOut = s.notes;
     return written;
 }
 

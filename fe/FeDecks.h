@@ -38,9 +38,12 @@ std::vector<std::string> writeScenarioDecks(const TetMesh& mesh, FeScenario& sce
 
 /// The default decks of `jawmesh run`: the tipping scenario (1 N lingual per tooth) with axes from
 /// axesForMesh(mesh, axes), in every format of options.formats, plus simulation/tipping_axes.json
-/// (the axes used, same JSON shape as the case's). Returns the paths written.
-/// Throws Error when no tooth can be loaded, or on I/O failure.
+/// (the axes used, same JSON shape as the case's). Returns the paths written; `notes`, when given,
+/// receives the scenario's notes (the decks carry them as comments): computed axes, uncertain
+/// ones (fe/ToothAxesFromShape.h), teeth not loaded. Throws Error when no tooth can be loaded, or
+/// on I/O failure.
 std::vector<std::string> writeTippingDecks(const TetMesh& mesh, const std::map<int, ToothAxes>& axes,
-                                           const std::string& outJawDir, const FeDeckOptions& options = {});
+                                           const std::string& outJawDir, const FeDeckOptions& options = {},
+                                           std::vector<std::string>* notes = nullptr);
 
 }  // namespace jawmesh

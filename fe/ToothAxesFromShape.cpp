@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 namespace jawmesh {
 namespace {
@@ -168,6 +170,35 @@ std::vector<Vec3> archTangentsOf(const std::map<int, SurfaceMesh>& teeth, const 
     return archTangents(centres, occlusalNormal);
 }
 
+/// The long axes of the teeth beside `unn` along the arch (the previous and next present UNN),
+/// one or two.
+std::vector<Vec3> neighbourLongAxes(const std::map<int, ToothAxes>& axes, int unn) {
+    std::vector<Vec3> out;
+    const auto it = axes.find(unn);
+    if (it != axes.begin()) out.push_back(std::prev(it)->second.occlusal);
+    if (std::next(it) != axes.end()) out.push_back(std::next(it)->second.occlusal);
+    return out;
+}
+
+/// Angle, degrees, from tooth unn's long axis to the nearer of its neighbours' (0 without one).
+double nearestNeighbourDeg(const std::map<int, ToothAxes>& axes, int unn) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Vec3& n : neighbourLongAxes(axes, unn)) nearest = std::min(nearest, angleDeg(axes.at(unn).occlusal, n));
+    return std::isfinite(nearest) ? nearest : 0.0;
+}
+
+/// The mean of the neighbours' long axes when tooth unn's lies more than kMaxNeighbourLongAxisDeg
+/// from the nearer of them and they agree with each other within that angle; nothing otherwise
+/// (a lone tooth, or neighbours that disagree: no better guess).
+std::optional<Vec3> neighboursLongAxis(const std::map<int, ToothAxes>& axes, int unn) {
+    const std::vector<Vec3> around = neighbourLongAxes(axes, unn);
+    if (around.empty() || nearestNeighbourDeg(axes, unn) <= kMaxNeighbourLongAxisDeg) return std::nullopt;
+    if (around.size() == 2 && angleDeg(around[0], around[1]) > kMaxNeighbourLongAxisDeg) return std::nullopt;
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& n : around) mean += n.normalized();
+    return mean.normalized();
+}
+
 }  // namespace
 
 double angleDeg(const Vec3& a, const Vec3& b) {
@@ -255,6 +286,26 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
         if (notes)
             notes->push_back("tooth " + std::to_string(unn) + ": mesial-distal axis from the " + choice.cue + " (" +
                              std::to_string(static_cast<int>(std::lround(choice.offArchDeg))) + " deg from the arch tangent)");
+    }
+    // A long axis its neighbours contradict is not used: it takes the neighbours' mean (the frame
+    // made again around it), and the tooth is reported.
+    index = 0;
+    for (auto it = shapes.begin(); it != shapes.end(); ++it, ++index) {
+        const int unn = it->first;
+        const std::optional<Vec3> replacement = neighboursLongAxis(axes, unn);
+        if (!replacement) continue;
+        const Shape& s = it->second;
+        const SurfaceMesh& mesh = teeth.at(unn);
+        const Vec3 along = tangents.empty() ? loneToothDirection(mesh, s) : tangents[index];
+        Vec3 labial = replacement->cross(along).normalized();
+        if (labial.dot(s.centroid - archCentre) < 0) labial = -labial;
+        const MesialDistalChoice choice = chooseMesialDistal(mesh, *replacement, along, labial, isMolar(unn));
+        const Vec3 distal = unnIncreasesMesially(unn, jaw) ? Vec3(-choice.direction) : choice.direction;
+        const double offDeg = nearestNeighbourDeg(axes, unn);
+        axes[unn] = frameAndCrownCentre(mesh, s, *replacement, distal, archCentre, o.crownFraction);
+        if (notes)
+            notes->push_back("tooth " + std::to_string(unn) + ": axes uncertain: its long axis from the shape was " +
+                             std::to_string(static_cast<int>(std::lround(offDeg))) + " deg from its nearest neighbour's; the mean of its neighbours' taken");
     }
     if (notes && fromBone) notes->push_back("tooth axes: occlusal side from the bone around the roots");
     return axes;

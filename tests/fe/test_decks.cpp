@@ -188,7 +188,11 @@ TEST(PolyfemWriter, JsonParsesAndEveryReferencedFileAndSelectionExists) {
 TEST(FeDecks, TippingDecksWithComputedAxesLandInTheSimulationFolder) {
     const TetMesh mesh = test::gridJawBlock();
     const auto dir = test::scratchDir("fe-decks");
-    const auto written = writeTippingDecks(mesh, {}, dir.string());
+    std::vector<std::string> notes;
+    const auto written = writeTippingDecks(mesh, {}, dir.string(), {}, &notes);
+    // the notes the decks carry come back to the caller (a run puts uncertain axes in run.json)
+    EXPECT_TRUE(std::count(notes.begin(), notes.end(), "tooth 24: axes computed from its shape"));
+    EXPECT_NE(test::readText(dir / "simulation" / "tipping.inp").find("** note: tooth 24: axes computed from its shape"), std::string::npos);
     std::set<std::string> names;
     for (const auto& p : written) {
         EXPECT_TRUE(std::filesystem::exists(p)) << p;
