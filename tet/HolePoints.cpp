@@ -52,7 +52,14 @@ void addLatticeInHole(const SurfaceMesh& s, const FilledHole& hole, std::vector<
 
 std::vector<Vec3> pointsInHoles(const SurfaceMesh& surface, const std::vector<FilledHole>& holes) {
     std::vector<Vec3> points;
-    for (const FilledHole& hole : holes) addLatticeInHole(surface, hole, points);
+    for (const FilledHole& hole : holes) {
+        const std::size_t before = points.size();
+        addLatticeInHole(surface, hole, points);
+        if (points.size() > kMaxHolePoints) {
+            points.resize(before);  // this hole's lattice would pass the cap: it and the rest get none
+            break;
+        }
+    }
     return points;
 }
 

@@ -18,8 +18,10 @@ namespace jawmesh {
 /// loop's mean edge, estimated as pi * diameter / edges, but at least the diameter over
 /// kMaxHoleLatticeSpans) within the ball of radius half the diameter plus two spacings, leaving
 /// out those nearer than half a spacing to a triangle of `surface` (a point next to the surface
-/// would only make flat tets). In lattice order, hole by hole: deterministic. Cost: O(T) per hole
-/// plus at most 37^3 lattice points, each against the triangles in its cell.
+/// would only make flat tets). In lattice order, hole by hole, until a hole's lattice would pass
+/// kMaxHolePoints in all (that hole and the rest get none: their patches are cut as before).
+/// Deterministic. Cost: O(T) per hole plus at most 37^3 lattice points, each against the
+/// triangles in its cell.
 std::vector<Vec3> pointsInHoles(const SurfaceMesh& surface, const std::vector<FilledHole>& holes);
 
 /// Lattice spacing over the loop's mean edge: 2 left no new region wedge under 20 deg on the
@@ -28,5 +30,8 @@ constexpr double kHolePointSpacing = 2.0;
 /// A hole is never more lattice spacings across than this (a loop of many short edges would
 /// otherwise fill its ball with millions of points).
 constexpr double kMaxHoleLatticeSpans = 32.0;
+/// Points for all holes together, so that many holes cannot swamp the quick run (the bone-holes
+/// surface's seven cut holes take a few thousand).
+constexpr std::size_t kMaxHolePoints = 200000;
 
 }  // namespace jawmesh

@@ -314,4 +314,9 @@ TEST(HoleRepair, PointsThroughAHoleClearTheSurfaceAndFillItsBall) {
     EXPECT_GT(capped.size(), through.size());
     EXPECT_LE(capped.size(), std::size_t(37 * 37 * 37));
     for (const Vec3& p : capped) EXPECT_LE((p - hole.centre).norm(), 0.5 * hole.diameterMm + 2.0 * cappedSpacing + 1e-12);
+    // Many such holes: whole lattices until the next would pass kMaxHolePoints.
+    const std::vector<Vec3> many = pointsInHoles(open.surface, std::vector<FilledHole>(1000, fine));
+    EXPECT_LE(many.size(), kMaxHolePoints);
+    EXPECT_EQ(many.size() % capped.size(), 0u);
+    EXPECT_GT(many.size() + capped.size(), kMaxHolePoints);
 }
