@@ -4,6 +4,7 @@
 #include "batch/MemoryEstimate.h"
 #include "cli/EvalReport.h"
 #include "fe/FeDecks.h"
+#include "fe/ToothAxesFromShape.h"
 #include "io/Error.h"
 #include "io/GmshWriter.h"
 #include "io/PolyWriter.h"
@@ -196,7 +197,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
                 record["fe_decks"].push_back(std::filesystem::path(p).lexically_relative(outJawDir).generic_string());
             // a load direction nobody should rely on without a look
             for (const std::string& n : notes)
-                if (n.find("uncertain") != std::string::npos) record["warnings"].push_back(n);
+                if (n.find(kUncertainAxesNote) != std::string::npos) record["warnings"].push_back(n);
         } catch (const Error& e) {
             record["warnings"].push_back(std::string("tipping decks not written: ") + e.what());
         }

@@ -161,6 +161,18 @@ Vec3 loneToothDirection(const SurfaceMesh& mesh, const Shape& s) {
     return eig.eigenvectors().col(1);
 }
 
+/// The frame of tooth unn for long axis `occlusal`: the labial axis perpendicular to it and to the
+/// arch direction `along`, away from the arch centre; mesial-distal from the crown's cues
+/// (`choice` says which), distal by the tooth's side of the jaw; the crown centre for that axis.
+ToothAxes frameForLongAxis(const SurfaceMesh& mesh, const Shape& s, int unn, Jaw jaw, const Vec3& along,
+                           const Vec3& archCentre, const Vec3& occlusal, double crownFraction, MesialDistalChoice& choice) {
+    Vec3 labial = occlusal.cross(along).normalized();
+    if (labial.dot(s.centroid - archCentre) < 0) labial = -labial;
+    choice = chooseMesialDistal(mesh, occlusal, along, labial, isMolar(unn));
+    const Vec3 distal = unnIncreasesMesially(unn, jaw) ? Vec3(-choice.direction) : choice.direction;
+    return frameAndCrownCentre(mesh, s, occlusal, distal, archCentre, crownFraction);
+}
+
 /// Arch tangents at the teeth in UNN order (pointing toward increasing UNN), through the crown
 /// centres of their anatomical axes; empty for a single tooth.
 std::vector<Vec3> archTangentsOf(const std::map<int, SurfaceMesh>& teeth, const std::map<int, Shape>& shapes,
@@ -187,12 +199,12 @@ double nearestNeighbourDeg(const std::map<int, ToothAxes>& axes, int unn) {
     return std::isfinite(nearest) ? nearest : 0.0;
 }
 
-/// The mean of the neighbours' long axes when tooth unn's lies more than kMaxNeighbourLongAxisDeg
-/// from the nearer of them and they agree with each other within that angle; nothing otherwise
-/// (a lone tooth, or neighbours that disagree: no better guess).
-std::optional<Vec3> neighboursLongAxis(const std::map<int, ToothAxes>& axes, int unn) {
+/// The mean of the neighbours' long axes when they agree with each other within
+/// kMaxNeighbourLongAxisDeg; nothing otherwise (a lone tooth, or neighbours that disagree: no
+/// better guess).
+std::optional<Vec3> agreeingNeighboursMean(const std::map<int, ToothAxes>& axes, int unn) {
     const std::vector<Vec3> around = neighbourLongAxes(axes, unn);
-    if (around.empty() || nearestNeighbourDeg(axes, unn) <= kMaxNeighbourLongAxisDeg) return std::nullopt;
+    if (around.empty()) return std::nullopt;
     if (around.size() == 2 && angleDeg(around[0], around[1]) > kMaxNeighbourLongAxisDeg) return std::nullopt;
     Vec3 mean = Vec3::Zero();
     for (const Vec3& n : around) mean += n.normalized();
@@ -250,20 +262,18 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
     const std::vector<Vec3> tangents = archTangentsOf(teeth, shapes, sense * common, sense, o.crownFraction);
 
     std::map<int, ToothAxes> axes;
+    std::vector<Vec3> alongs;  // the arch direction at each tooth, in UNN order
     std::size_t index = 0;
     for (auto it = shapes.begin(); it != shapes.end(); ++it, ++index) {
         const int unn = it->first;
         const Shape& s = it->second;
         const SurfaceMesh& mesh = teeth.at(unn);
         const Vec3 along = tangents.empty() ? loneToothDirection(mesh, s) : tangents[index];
+        alongs.push_back(along);
         if (tangents.empty() && notes) notes->push_back("tooth " + std::to_string(unn) + ": no neighbours, mesial-distal and labial senses guessed");
         MesialDistalChoice choice;
         auto frameFor = [&](const Vec3& occlusal) {
-            Vec3 labial = occlusal.cross(along).normalized();
-            if (labial.dot(s.centroid - archCentre) < 0) labial = -labial;
-            choice = chooseMesialDistal(mesh, occlusal, along, labial, isMolar(unn));
-            const Vec3 distal = unnIncreasesMesially(unn, jaw) ? Vec3(-choice.direction) : choice.direction;
-            return frameAndCrownCentre(mesh, s, occlusal, distal, archCentre, o.crownFraction);
+            return frameForLongAxis(mesh, s, unn, jaw, along, archCentre, occlusal, o.crownFraction, choice);
         };
         const double faceRadiusMm = isMolar(unn) ? o.molarLabialFaceRadiusMm : o.labialFaceRadiusMm;
         const Vec3 anatomical = sense * s.longAxis;
@@ -292,19 +302,14 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
     index = 0;
     for (auto it = shapes.begin(); it != shapes.end(); ++it, ++index) {
         const int unn = it->first;
-        const std::optional<Vec3> replacement = neighboursLongAxis(axes, unn);
-        if (!replacement) continue;
-        const Shape& s = it->second;
-        const SurfaceMesh& mesh = teeth.at(unn);
-        const Vec3 along = tangents.empty() ? loneToothDirection(mesh, s) : tangents[index];
-        Vec3 labial = replacement->cross(along).normalized();
-        if (labial.dot(s.centroid - archCentre) < 0) labial = -labial;
-        const MesialDistalChoice choice = chooseMesialDistal(mesh, *replacement, along, labial, isMolar(unn));
-        const Vec3 distal = unnIncreasesMesially(unn, jaw) ? Vec3(-choice.direction) : choice.direction;
         const double offDeg = nearestNeighbourDeg(axes, unn);
-        axes[unn] = frameAndCrownCentre(mesh, s, *replacement, distal, archCentre, o.crownFraction);
+        if (offDeg <= kMaxNeighbourLongAxisDeg) continue;
+        const std::optional<Vec3> mean = agreeingNeighboursMean(axes, unn);
+        if (!mean) continue;
+        MesialDistalChoice choice;
+        axes[unn] = frameForLongAxis(teeth.at(unn), it->second, unn, jaw, alongs[index], archCentre, *mean, o.crownFraction, choice);
         if (notes)
-            notes->push_back("tooth " + std::to_string(unn) + ": axes uncertain: its long axis from the shape was " +
+            notes->push_back("tooth " + std::to_string(unn) + ": " + kUncertainAxesNote + ": its long axis from the shape was " +
                              std::to_string(static_cast<int>(std::lround(offDeg))) + " deg from its nearest neighbour's; the mean of its neighbours' taken");
     }
     if (notes && fromBone) notes->push_back("tooth axes: occlusal side from the bone around the roots");

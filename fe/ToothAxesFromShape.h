@@ -60,6 +60,9 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
 /// Neighbouring teeth's long axes differ by up to 25 degrees on the shared mandible (the curve of
 /// Wilson: first molar against second premolar) and 18 between nearest neighbours.
 constexpr double kMaxNeighbourLongAxisDeg = 30.0;
+/// The words in the note of a tooth whose axes its neighbours contradicted (a run copies such notes
+/// into run.json's warnings).
+constexpr const char* kUncertainAxesNote = "axes uncertain";
 
 /// Angle in degrees between two directions (0..180).
 double angleDeg(const Vec3& a, const Vec3& b);
