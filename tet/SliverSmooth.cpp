@@ -56,7 +56,35 @@ double movingScore(const MovingStar::Corners& c, const Vec3& p) {
 
 }  // namespace
 
+void rankWorstFirst(MovingStar& star, const Vec3& p) {
+    std::vector<double> score(star.tets.size());
+    for (std::size_t i = 0; i < score.size(); ++i) score[i] = movingScore(star.tets[i], p);
+    star.worstFirst.resize(score.size());
+    for (std::size_t i = 0; i < score.size(); ++i) star.worstFirst[i] = std::uint32_t(i);
+    std::stable_sort(star.worstFirst.begin(), star.worstFirst.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return score[a] < score[b]; });
+}
+
+namespace {
+
+/// Whether the tets cannot beat `cannotBeat` (in worst-first order, stopping when that shows).
+bool cannotWin(const MovingStar& star, const Vec3& p, double target, const Objective& cannotBeat) {
+    Objective o;
+    for (std::uint32_t i : star.worstFirst) {
+        o.add(movingScore(star.tets[i], p), target);
+        if (o.worst < cannotBeat.worst || o.deficit > cannotBeat.deficit) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 Objective objectiveWith(const MovingStar& star, const Vec3& p, double target, const Objective& cannotBeat) {
+    // Screened first: a sum in another order may differ in its last bit, so only "cannot win" is
+    // taken from the screen (its bound has slack far above rounding, Objective::hopelessBelow).
+    // Only against a valid bound: an invalid tet (worst kInvalidScore) then cannot win either way.
+    if (!star.worstFirst.empty() && cannotBeat.worst > kInvalidScore && cannotWin(star, p, target, cannotBeat))
+        return Objective::hopeless();
     Objective o;
     for (const MovingStar::Corners& c : star.tets) {
         o.add(movingScore(c, p), target);
@@ -80,8 +108,9 @@ Objective objectiveOf(const TetMeshEditor& mesh, const std::vector<std::int32_t>
 
 std::pair<Vec3, Objective> bestPosition(const TetMeshEditor& mesh, const std::vector<Tet>& tets, std::int32_t v, Vec3 start,
                                         double target) {
-    const MovingStar star = movingStar(mesh.nodes(), tets, v);
+    MovingStar star = movingStar(mesh.nodes(), tets, v);
     Objective best = objectiveWith(star, start, target);
+    rankWorstFirst(star, start);
     double shortest = std::numeric_limits<double>::infinity();
     for (const Tet& e : tets)
         for (auto w : e)
@@ -112,6 +141,7 @@ std::pair<Vec3, Objective> bestPosition(const TetMeshEditor& mesh, const std::ve
         if (stepBest.betterThan(best)) {
             best = stepBest;
             p = stepP;
+            rankWorstFirst(star, p);
         } else {
             h *= 0.5;
         }

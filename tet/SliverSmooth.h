@@ -27,15 +27,25 @@ struct MovingStar {
         double fixedScore = kInvalidScore;
     };
     std::vector<Corners> tets;
+    /// Indices into `tets`, the worst-scoring at the last position rankWorstFirst saw first: a
+    /// trial that cannot win is found out after a tet or two (empty: `tets` order).
+    std::vector<std::uint32_t> worstFirst;
 };
+
+/// Ranks the star's tets by their score with the node at p, worst first (star.worstFirst).
+void rankWorstFirst(MovingStar& star, const Vec3& p);
 
 /// The star of node v over `tets` (by nodes of `nodes`).
 MovingStar movingStar(const std::vector<Vec3>& nodes, const std::vector<Tet>& tets, std::int32_t v);
 
 /// The objective of `star` with its node placed at p (scores as tet/SliverScore.h's, up to
-/// rounding); stops at the first invalid tet, and returns Objective::hopeless() as soon as the
-/// tets so far are worse than `cannotBeat` in either part (a trial that can no longer win is not
-/// scored to the end).
+/// rounding), summed in the order of `star.tets`; stops at the first invalid tet in that order.
+/// Returns Objective::hopeless() when the tets are worse than `cannotBeat` in either part (a
+/// trial with an invalid tet is, when cannotBeat's worst score is valid): found by scoring in
+/// star.worstFirst order, stopping as soon as the tets so far are (the worst score only falls and
+/// the shortfall only grows), so a trial that can no longer win costs a tet or two; one that
+/// survives is scored again in `tets` order, so its objective has the same bits whatever the
+/// ranking.
 Objective objectiveWith(const MovingStar& star, const Vec3& p, double target, const Objective& cannotBeat = Objective::hopeless());
 
 /// The same for the tets `tets` (by nodes of `nodes`) with node v placed at p.
