@@ -4,6 +4,7 @@
 #include "io/Error.h"
 #include "tet/LabelFromSides.h"
 
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -61,10 +62,9 @@ GroupRun groupRun(const InterfaceComplex& plc, const TetgenRun& run, const Group
     return g;
 }
 
-/// Appends the group's tets (labeled from its sides, those of its own regions only), its Steiner
-/// points and its facets to `merged`, in plc's numbering.
-void appendGroup(const GroupRun& g, TetgenMesh raw, const Groups& groups, int group, TetgenMesh& merged) {
-    labelFromSides(g.complex, raw);
+/// Appends the group's tets (`raw` labeled from the group's sides; those of its own regions only),
+/// its Steiner points and its facets to `merged`, in plc's numbering.
+void appendGroup(const GroupRun& g, const TetgenMesh& raw, const Groups& groups, int group, TetgenMesh& merged) {
     const std::size_t points = g.plcPoint.size();
     const std::size_t base = merged.mesh.nodes.size();
     const auto plcIndex = [&](std::int32_t id) {
@@ -140,7 +140,11 @@ std::map<Label, int> tetgenGroups(const InterfaceComplex& plc) {
 
 TetgenMesh runTetgenInGroups(const InterfaceComplex& plc, const TetgenRun& run, bool preserveBoundary, bool isolated,
                              std::uint64_t& childPeakBytes) {
-    const auto single = [&] { return isolated ? runTetgenInChild(plc, run, childPeakBytes) : runTetgen(plc, run); };
+    const auto single = [&] {
+        TetgenMesh raw = isolated ? runTetgenInChild(plc, run, childPeakBytes) : runTetgen(plc, run);
+        if (preserveBoundary) labelFromSides(plc, raw);
+        return raw;
+    };
     if (!preserveBoundary) return single();
     const Groups labelGroups = tetgenGroups(plc);
     std::vector<GroupRun> groups;
@@ -149,9 +153,12 @@ TetgenMesh runTetgenInGroups(const InterfaceComplex& plc, const TetgenRun& run, 
         if (g.complex.seeds.empty()) return single();
 
     std::vector<TetgenMesh> raw = runGroups(groups, isolated, childPeakBytes);
+    // Each group labeled from its own sides, both at once. The union needs no labelling of its
+    // own: a region's tets are all in its group, bounded by triangles all in that group's complex.
+    tbb::parallel_for(0, kGroups, [&](int g) { labelFromSides(groups[std::size_t(g)].complex, raw[std::size_t(g)]); });
     TetgenMesh merged;
     merged.mesh.nodes = plc.surface.vertices;
-    for (int g = 0; g < kGroups; ++g) appendGroup(groups[std::size_t(g)], std::move(raw[std::size_t(g)]), labelGroups, g, merged);
+    for (int g = 0; g < kGroups; ++g) appendGroup(groups[std::size_t(g)], raw[std::size_t(g)], labelGroups, g, merged);
     std::sort(merged.facets.begin(), merged.facets.end());
     merged.facets.erase(std::unique(merged.facets.begin(), merged.facets.end()), merged.facets.end());
     return merged;

@@ -22,9 +22,10 @@ std::map<Label, int> tetgenGroups(const InterfaceComplex& plc);
 /// thread (the same mesh either way): nodes are plc's points (in order), then each group's
 /// Steiner points, group 0 first; every tet is labeled from the interface sides
 /// (tet/LabelFromSides.h) and kept by the group its label belongs to (a region no seed of the
-/// group reached is the other group's, or outside). Without the boundary preserved, or with a
-/// group empty, one run as runTetgen (runTetgenInChild when isolated). childPeakBytes is raised to
-/// the peak resident memory of the children. Throws what runTetgen throws.
+/// group reached is the other group's, or outside). With a group empty, one run as runTetgen
+/// (runTetgenInChild when isolated), its tets labeled from the sides too; without the boundary
+/// preserved, that one run with TetGen's own labels. childPeakBytes is raised to the peak
+/// resident memory of the children. Throws what runTetgen and labelFromSides throw.
 TetgenMesh runTetgenInGroups(const InterfaceComplex& plc, const TetgenRun& run, bool preserveBoundary, bool isolated,
                              std::uint64_t& childPeakBytes);
 

@@ -172,7 +172,6 @@ bool attempt(Ladder& l, const InterfaceComplex& complex, std::size_t r, bool onl
     ++l.stats.attempts;
     const TetgenRun run{tetgenSwitches(o, kLadder[r]), kLadder[r].optMaxDihedralDeg, seedVolumeBounds(complex, o)};
     TetgenMesh raw = runTetgenInGroups(complex, run, o.preserveBoundary, isolated, l.stats.childPeakMemoryBytes);
-    if (o.preserveBoundary) labelFromSides(complex, raw);
     const std::size_t removed = keepLabeled(raw.mesh);
     if (raw.mesh.tets.empty()) throw Error(kTetStageName, "no tetrahedron received a label: are the seeds inside their regions?");
     SliverStats slivers;
