@@ -8,6 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <exception>
 #include <map>
 #include <optional>
 
@@ -155,7 +156,17 @@ TetgenMesh runTetgenInGroups(const InterfaceComplex& plc, const TetgenRun& run, 
     std::vector<TetgenMesh> raw = runGroups(groups, isolated, childPeakBytes);
     // Each group labeled from its own sides, both at once. The union needs no labelling of its
     // own: a region's tets are all in its group, bounded by triangles all in that group's complex.
-    tbb::parallel_for(0, kGroups, [&](int g) { labelFromSides(groups[std::size_t(g)].complex, raw[std::size_t(g)]); });
+    // What a group throws is rethrown in group order, so the error does not depend on the threads.
+    std::vector<std::exception_ptr> failed(kGroups);
+    tbb::parallel_for(0, kGroups, [&](int g) {
+        try {
+            labelFromSides(groups[std::size_t(g)].complex, raw[std::size_t(g)]);
+        } catch (...) {
+            failed[std::size_t(g)] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
     TetgenMesh merged;
     merged.mesh.nodes = plc.surface.vertices;
     for (int g = 0; g < kGroups; ++g) appendGroup(groups[std::size_t(g)], raw[std::size_t(g)], labelGroups, g, merged);
