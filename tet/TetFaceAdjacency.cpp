@@ -25,7 +25,7 @@ std::vector<TetFaceRef> facesInTetOrder(const TetMesh& mesh) {
     return faces;
 }
 
-/// Stable sort of one node's faces by their two other nodes (a few dozen at most: no buffer).
+/// Stable sort of one node's faces by their two other nodes (a few dozen on average: no buffer).
 void insertionSortByOtherNodes(TetFaceRef* begin, TetFaceRef* end) {
     const auto before = [](const TetFaceRef& a, const TetFaceRef& b) {
         return a.key[1] != b.key[1] ? a.key[1] < b.key[1] : a.key[2] < b.key[2];
