@@ -4,13 +4,12 @@
 
 #include "io/Error.h"
 #include "io/MeshIO.h"
+#include "io/ParallelInOrder.h"
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <sstream>
 
@@ -175,21 +174,15 @@ JawSurfaces loadJaw(const JawCase& jc, const LoadOptions& options, Progress& pro
         unns.push_back(unn);
     }
     std::vector<SurfaceMesh> meshes(paths.size());
-    std::vector<std::exception_ptr> errors(paths.size());
     {
         ProgressStage stage(progress, "read " + jawName(jc.jaw) + " surfaces");
         std::atomic<std::size_t> done{0};
-        tbb::parallel_for(std::size_t(0), paths.size(), [&](std::size_t i) {
-            try {
-                progress.checkCancelled();
-                meshes[i] = readSurface(paths[i]);
-            } catch (...) {
-                errors[i] = std::current_exception();
-            }
+        // the first failing file in a fixed order, whatever the threads
+        parallelForFirstErrorInOrder(paths.size(), [&](std::size_t i) {
+            progress.checkCancelled();
+            meshes[i] = readSurface(paths[i]);
             stage.update(static_cast<double>(++done) / static_cast<double>(paths.size()));
         });
-        for (const auto& e : errors)  // the first failing file in a fixed order, whatever the threads
-            if (e) std::rethrow_exception(e);
     }
     out.bone = std::move(meshes[0]);
     if (!jc.axesPath.empty()) out.axes = readToothAxes(jc.axesPath);

@@ -2,17 +2,16 @@
 #include "levelset/LabelVolumeSurfaces.h"
 
 #include "io/Error.h"
+#include "io/ParallelInOrder.h"
 #include "levelset/LevelSetSurface.h"
 
 #include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/Filter.h>
 #include <openvdb/tools/TopologyToLevelSet.h>
 #include <openvdb/tree/LeafManager.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
 #include <map>
 
 namespace jawmesh {
@@ -133,23 +132,16 @@ JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment&
     for (const auto& job : jobs) groups.push_back(job.second);
     const std::vector<openvdb::MaskGrid::Ptr> masks = segmentMasks(v, groups);
     std::vector<SurfaceMesh> surfaces(jobs.size());
-    std::vector<std::exception_ptr> errors(jobs.size());
     ProgressStage stage(progress, jawName(jaw) + " label surfaces");
     std::atomic<std::size_t> done{0};
-    tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t j) {
-        try {
-            progress.checkCancelled();
-            // A kept PDL is the gap between root and socket, 2-4 voxels thick: matching the volume
-            // of the solids on both sides would move both its walls into it (4 % of the phantom's
-            // PDL, where iso 0 leaves it within 2 % and the solids within 0.5 %).
-            surfaces[j] = maskSurface(v, *masks[j], kLabelSmoothingSteps, !keepPdl);
-        } catch (...) {
-            errors[j] = std::current_exception();
-        }
+    parallelForFirstErrorInOrder(jobs.size(), [&](std::size_t j) {
+        progress.checkCancelled();
+        // A kept PDL is the gap between root and socket, 2-4 voxels thick: matching the volume
+        // of the solids on both sides would move both its walls into it (4 % of the phantom's
+        // PDL, where iso 0 leaves it within 2 % and the solids within 0.5 %).
+        surfaces[j] = maskSurface(v, *masks[j], kLabelSmoothingSteps, !keepPdl);
         stage.update(static_cast<double>(++done) / static_cast<double>(jobs.size()));
     });
-    for (const auto& e : errors)
-        if (e) std::rethrow_exception(e);
     JawSurfaces out;
     out.jaw = jaw;
     out.pdlKept = keepPdl;

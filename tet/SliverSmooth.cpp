@@ -54,8 +54,7 @@ double movingScore(const MovingStar::Corners& c, const Vec3& p) {
     return scoreOfFaceNormals(n, len);
 }
 
-}  // namespace
-
+/// Ranks the star's tets by their score with the node at p, worst first (star.worstFirst).
 void rankWorstFirst(MovingStar& star, const Vec3& p) {
     std::vector<double> score(star.tets.size());
     for (std::size_t i = 0; i < score.size(); ++i) score[i] = movingScore(star.tets[i], p);
@@ -64,8 +63,6 @@ void rankWorstFirst(MovingStar& star, const Vec3& p) {
     std::stable_sort(star.worstFirst.begin(), star.worstFirst.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return score[a] < score[b]; });
 }
-
-namespace {
 
 /// Whether the tets cannot beat `cannotBeat` (in worst-first order, stopping when that shows).
 bool cannotWin(const MovingStar& star, const Vec3& p, double target, const Objective& cannotBeat) {

@@ -27,13 +27,10 @@ struct MovingStar {
         double fixedScore = kInvalidScore;
     };
     std::vector<Corners> tets;
-    /// Indices into `tets`, the worst-scoring at the last position rankWorstFirst saw first: a
-    /// trial that cannot win is found out after a tet or two (empty: `tets` order).
+    /// Indices into `tets`, the worst-scoring at the search's current position first (bestPosition
+    /// ranks them): a trial that cannot win is found out after a tet or two (empty: no screening).
     std::vector<std::uint32_t> worstFirst;
 };
-
-/// Ranks the star's tets by their score with the node at p, worst first (star.worstFirst).
-void rankWorstFirst(MovingStar& star, const Vec3& p);
 
 /// The star of node v over `tets` (by nodes of `nodes`).
 MovingStar movingStar(const std::vector<Vec3>& nodes, const std::vector<Tet>& tets, std::int32_t v);

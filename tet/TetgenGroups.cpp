@@ -2,13 +2,12 @@
 #include "tet/TetgenGroups.h"
 
 #include "io/Error.h"
+#include "io/ParallelInOrder.h"
 #include "tet/LabelFromSides.h"
 
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <exception>
 #include <map>
 #include <optional>
 
@@ -156,17 +155,7 @@ TetgenMesh runTetgenInGroups(const InterfaceComplex& plc, const TetgenRun& run, 
     std::vector<TetgenMesh> raw = runGroups(groups, isolated, childPeakBytes);
     // Each group labeled from its own sides, both at once. The union needs no labelling of its
     // own: a region's tets are all in its group, bounded by triangles all in that group's complex.
-    // What a group throws is rethrown in group order, so the error does not depend on the threads.
-    std::vector<std::exception_ptr> failed(kGroups);
-    tbb::parallel_for(0, kGroups, [&](int g) {
-        try {
-            labelFromSides(groups[std::size_t(g)].complex, raw[std::size_t(g)]);
-        } catch (...) {
-            failed[std::size_t(g)] = std::current_exception();
-        }
-    });
-    for (const std::exception_ptr& e : failed)
-        if (e) std::rethrow_exception(e);
+    parallelForFirstErrorInOrder(std::size_t(kGroups), [&](std::size_t g) { labelFromSides(groups[g].complex, raw[g]); });
     TetgenMesh merged;
     merged.mesh.nodes = plc.surface.vertices;
     for (int g = 0; g < kGroups; ++g) appendGroup(groups[std::size_t(g)], raw[std::size_t(g)], labelGroups, g, merged);
