@@ -6,8 +6,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 namespace jawmesh {
 namespace {
@@ -48,16 +50,45 @@ Corner measure(const TriangleBvh& to, const Vec3& p, std::int32_t hint) {
     return {p, std::sqrt(c.squaredDistanceMm2), c.triangle};
 }
 
-/// Upper bound of the distance over triangle (a, b, c) without new queries: the smaller of the
-/// Lipschitz bound from each corner and the convex bound of each corner's nearest `to` triangle.
-double upperBound(const Corner* k, const TriangleBvh& to) {
+/// The farthest any point of triangle (a, b, c) is from its nearest corner: the circumradius of an
+/// acute triangle; for an obtuse one, where the perpendicular bisectors of the two shorter sides
+/// meet the longest. Infinite for a degenerate triangle.
+double coveringRadius(const Vec3& a, const Vec3& b, const Vec3& c) {
+    // Name the corners so that C holds the largest angle (faces the longest side AB).
+    std::array<Vec3, 3> p{a, b, c};
+    const double la = (c - b).squaredNorm(), lb = (a - c).squaredNorm(), lc = (b - a).squaredNorm();
+    if (la >= lb && la >= lc) p = {b, c, a};
+    else if (lb >= la && lb >= lc) p = {c, a, b};
+    const Vec3 ab = p[1] - p[0], ac = p[2] - p[0], bc = p[2] - p[1];
+    const double ab2 = ab.squaredNorm(), ac2 = ac.squaredNorm(), bc2 = bc.squaredNorm();
+    const double twiceArea = ab.cross(ac).norm();
+    if (!(twiceArea > 0)) return std::numeric_limits<double>::infinity();
+    if (ac2 + bc2 >= ab2) return std::sqrt(ab2 * ac2 * bc2) / (2 * twiceArea);  // acute or right
+    // |x - A| = |x - C| on AB lies |AC| / (2 cos A) from A (and from C); likewise for B.
+    const double cosA = ab.dot(ac) / std::sqrt(ab2 * ac2), cosB = -ab.dot(bc) / std::sqrt(ab2 * bc2);
+    return std::max(std::sqrt(ac2) / (2 * cosA), std::sqrt(bc2) / (2 * cosB));
+}
+
+/// Upper bound of the distance over triangle (a, b, c) without new queries: the smallest of the
+/// Lipschitz bounds from the corners (each corner's distance plus the farthest point from it; the
+/// largest corner distance plus the covering radius) and the convex bound of each corner's
+/// nearest `to` triangle. Stops early, with a bound above `enough`, once a bound is at or under
+/// it or a `to` triangle's corner distance already exceeds the bound found: the callers only ask
+/// whether the bound is at most `enough`, and these shortcuts never change that answer.
+double upperBound(const Corner* k, const TriangleBvh& to, double enough) {
     const double ab = (k[1].p - k[0].p).norm(), bc = (k[2].p - k[1].p).norm(), ca = (k[0].p - k[2].p).norm();
     double u = std::min({k[0].d + std::max(ab, ca), k[1].d + std::max(ab, bc), k[2].d + std::max(bc, ca)});
+    // (1 + 1e-12): a margin over the rounding of the covering radius.
+    u = std::min(u, std::max({k[0].d, k[1].d, k[2].d}) + coveringRadius(k[0].p, k[1].p, k[2].p) * (1 + 1e-12));
+    if (u <= enough) return u;
     for (int i = 0; i < 3; ++i) {
         const auto& t = to.corners[static_cast<std::size_t>(to.slotOf[static_cast<std::size_t>(k[i].closest)])];
         double worst2 = 0;
-        for (int j = 0; j < 3; ++j) worst2 = std::max(worst2, squaredDistanceToTriangle(k[j].p, t[0], t[1], t[2]));
+        // Past u^2 (with a margin over the rounding of the square root) this triangle cannot lower u.
+        for (int j = 0; j < 3 && worst2 <= u * u * (1 + 1e-12); ++j)
+            worst2 = std::max(worst2, squaredDistanceToTriangle(k[j].p, t[0], t[1], t[2]));
         u = std::min(u, std::sqrt(worst2));
+        if (u <= enough) return u;
     }
     return u;
 }
@@ -85,7 +116,7 @@ void refineMax(const Corner& a, const Corner& b, const Corner& c, const Triangle
         const Item item = stack.back();
         stack.pop_back();
         const Corner* k = item.k;
-        if (upperBound(k, to) <= best + toleranceMm) continue;
+        if (upperBound(k, to, best + toleranceMm) <= best + toleranceMm) continue;
         const Vec3 centre = (k[0].p + k[1].p + k[2].p) / 3.0;
         const Corner m = measure(to, centre, k[0].closest);
         raise(m);
