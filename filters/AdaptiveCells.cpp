@@ -332,18 +332,26 @@ bool errorsWithin(Block& b, const Mesh& mesh, Scratch& s, double carriedMm, doub
         const double r2 = std::max({(corner(t, 0) - c).squaredNorm(), (corner(t, 1) - c).squaredNorm(), (corner(t, 2) - c).squaredNorm()});
         s.spheres.push_back({c, std::sqrt(r2)});
     }
+    const auto distance2 = [&](const Vec3& x, std::size_t t) {
+        return squaredDistanceToTriangle(x, corner(s.fan[t], 0), corner(s.fan[t], 1), corner(s.fan[t], 2));
+    };
     for (std::size_t i = 0; i < b.members.size(); ++i) {
         const Vec3& x = P[std::size_t(b.members[i])];
-        double d2 = std::numeric_limits<double>::infinity(), d = d2;
+        // The previous member's carrier first (members are near each other): its distance prunes
+        // most of the fan at once. The nearest is still the lowest-indexed of the nearest.
+        const std::int32_t guess = i > 0 ? b.carrier[i - 1] : 0;
+        double d2 = s.fan.empty() ? std::numeric_limits<double>::infinity() : distance2(x, std::size_t(guess)), d = std::sqrt(d2);
+        b.carrier[i] = s.fan.empty() ? -1 : guess;  // index into the fan; made a triangle id at the end
         for (std::size_t t = 0; t < s.fan.size(); ++t) {
+            if (std::int32_t(t) == guess) continue;
             const auto& [centre, radius] = s.spheres[t];
             const double reach = (d + radius) * (1.0 + 1e-9);  // a margin over rounding: the same nearest
             if ((x - centre).squaredNorm() > reach * reach) continue;
-            const double e = squaredDistanceToTriangle(x, corner(s.fan[t], 0), corner(s.fan[t], 1), corner(s.fan[t], 2));
-            if (e < d2) {
+            const double e = distance2(x, t);
+            if (e < d2 || (e == d2 && std::int32_t(t) < b.carrier[i])) {
                 d2 = e;
                 d = std::sqrt(e);
-                b.carrier[i] = std::int32_t(t);  // index into the fan; made a triangle id at the end
+                b.carrier[i] = std::int32_t(t);
             }
         }
         worst2 = std::max(worst2, d2);
