@@ -15,6 +15,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -121,18 +122,26 @@ LabelWindow windowOf(const openvdb::Int32Grid::ConstAccessor& labels, const Coor
     return LabelWindow(labels, scaled(lo, size).offsetBy(-ring), size + 1 + 2 * ring);
 }
 
-/// Block lo at `level` tried as its eight children (chooseBlocks on each).
-void chooseInChildren(const LabelWindow& labels, const std::vector<Coord>& cells, const Coord& lo,
-                      int level, const MergeRule& rule, const std::vector<std::int32_t>& members, std::vector<Block>& out) {
-    std::vector<std::int32_t> child[8];
+/// Child k (0..7, x in bit 0, y in bit 1, z in bit 2) of block lo, one level down.
+Coord childBlock(const Coord& lo, int k) { return Coord(2 * lo.x() + (k & 1), 2 * lo.y() + ((k >> 1) & 1), 2 * lo.z() + ((k >> 2) & 1)); }
+
+/// The members of block lo at `level` by the child (childBlock) that holds them, in their order.
+std::array<std::vector<std::int32_t>, 8> membersByChild(const std::vector<Coord>& cells, const Coord& lo, int level,
+                                                        const std::vector<std::int32_t>& members) {
+    std::array<std::vector<std::int32_t>, 8> child;
     const int half = 1 << (level - 1);
     for (std::int32_t m : members) {
         const Coord c = cells[std::size_t(m)] - scaled(lo, 1 << level);
-        child[(c.x() >= half) | ((c.y() >= half) << 1) | ((c.z() >= half) << 2)].push_back(m);
+        child[std::size_t((c.x() >= half) | ((c.y() >= half) << 1) | ((c.z() >= half) << 2))].push_back(m);
     }
-    for (int k = 0; k < 8; ++k)
-        chooseBlocks(labels, cells, Coord(2 * lo.x() + (k & 1), 2 * lo.y() + ((k >> 1) & 1), 2 * lo.z() + ((k >> 2) & 1)),
-                     level - 1, rule, std::move(child[k]), out);
+    return child;
+}
+
+/// Block lo at `level` tried as its eight children (chooseBlocks on each).
+void chooseInChildren(const LabelWindow& labels, const std::vector<Coord>& cells, const Coord& lo,
+                      int level, const MergeRule& rule, const std::vector<std::int32_t>& members, std::vector<Block>& out) {
+    auto child = membersByChild(cells, lo, level, members);
+    for (int k = 0; k < 8; ++k) chooseBlocks(labels, cells, childBlock(lo, k), level - 1, rule, std::move(child[std::size_t(k)]), out);
 }
 
 /// The blocks among `members` (cells of block lo at `level`) that pass the disc or layer test,
@@ -478,11 +487,32 @@ void findRimQuads(Mesh& mesh, std::size_t first) {
     });
 }
 
-/// Every cell in its top-level block, each block tried largest first (parallel, in block order).
+/// Block lo at `level` (at least `top`) as chooseBlocks, but one above the top level with a
+/// descendant of the top level near the teeth (`near`) is tried as its eight children.
+void chooseAwayFromTeeth(const LabelWindow& labels, const std::vector<Coord>& cells, const Coord& lo, int level, int top,
+                         const MergeRule& rule, const openvdb::BoolGrid& near, std::vector<std::int32_t> members,
+                         std::vector<Block>& out) {
+    if (level <= top || members.empty()) return chooseBlocks(labels, cells, lo, level, rule, std::move(members), out);
+    const int n = 1 << (level - top);
+    const Coord first = scaled(lo, n);
+    bool nearTeeth = false;
+    const auto nearAcc = near.getConstAccessor();
+    for (int x = 0; x < n && !nearTeeth; ++x)
+        for (int y = 0; y < n && !nearTeeth; ++y)
+            for (int z = 0; z < n && !nearTeeth; ++z) nearTeeth = nearAcc.isValueOn(first.offsetBy(x, y, z));
+    if (!nearTeeth) return chooseBlocks(labels, cells, lo, level, rule, std::move(members), out);
+    auto child = membersByChild(cells, lo, level, members);
+    for (int k = 0; k < 8; ++k)
+        chooseAwayFromTeeth(labels, cells, childBlock(lo, k), level - 1, top, rule, near, std::move(child[std::size_t(k)]), out);
+}
+
+/// Every cell in its block at level `farTop` (top or more), each block tried largest first
+/// (parallel, in block order); a block above the top level near the teeth (`near`, on the grid of
+/// top-level blocks) starts from its children (chooseAwayFromTeeth).
 std::vector<Block> initialBlocks(const openvdb::Int32Grid& labels, const std::vector<Coord>& cells, int top,
-                                 const MergeRule& rule) {
+                                 int farTop, const MergeRule& rule, const openvdb::BoolGrid& near) {
     std::vector<std::pair<Coord, std::int32_t>> byBlock(cells.size());
-    for (std::size_t c = 0; c < cells.size(); ++c) byBlock[c] = {blockOf(cells[c], top), std::int32_t(c)};
+    for (std::size_t c = 0; c < cells.size(); ++c) byBlock[c] = {blockOf(cells[c], farTop), std::int32_t(c)};
     tbb::parallel_sort(byBlock.begin(), byBlock.end());  // by block, then cell: the cells' order within a block
     std::vector<std::size_t> groupStart;
     for (std::size_t i = 0; i < byBlock.size(); ++i)
@@ -494,7 +524,7 @@ std::vector<Block> initialBlocks(const openvdb::Int32Grid& labels, const std::ve
         std::vector<std::int32_t> members;
         for (std::size_t i = groupStart[g]; i < groupStart[g + 1]; ++i) members.push_back(byBlock[i].second);
         const Coord lo = byBlock[groupStart[g]].first;
-        chooseBlocks(windowOf(acc, lo, top, rule), cells, lo, top, rule, std::move(members), chosen[g]);
+        chooseAwayFromTeeth(windowOf(acc, lo, farTop, rule), cells, lo, farTop, top, rule, near, std::move(members), chosen[g]);
     });
     std::vector<Block> blocks;
     for (auto& v : chosen)
@@ -538,7 +568,8 @@ std::vector<std::size_t> failingBlocks(Mesh& mesh, const std::vector<char>& dirt
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             Block& k = mesh.blocks[todo[i]];
             mesh.trianglesAt(k.vertex, k.vertex, s.fan, s.fanSides);
-            const bool nearTeeth = nearAcc.isValueOn(blockOf(k.lo, rule.top - k.level));
+            // a block above the top level is far from the teeth (initialBlocks)
+            const bool nearTeeth = k.level <= rule.top && nearAcc.isValueOn(blockOf(k.lo, rule.top - k.level));
             const double bound = rule.options.bounds.boundMm(k.sides[0], k.sides[1], nearTeeth);
             failed[i] = !fanShapeOk(mesh, k.vertex, s, rule.cosMinAngle, rule.options.minWedgeDeg, rule.options.bounds) ||
                         !errorsWithin(k, mesh, s, rule.options.carriedFraction * bound, rule.options.sampleFraction * bound);
@@ -641,17 +672,18 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
     mesh.blockOfCell.assign(cells.size(), -1);
     mesh.blockAtVertex.assign(cells.size(), -1);
     AdaptiveSurface out;
+    const double voxelMm = labels.voxelSize()[0];
+    const auto near = top > 0 ? blocksNearTeeth(quads, cells, top, voxelMm * double(1 << top), options.boneNearTeethMm)
+                              : openvdb::BoolGrid::create(false);
+    const int farTop = top > 0 ? std::min(top + options.farBoneExtraLevels, 5) : 0;
     if (top > 0) {
         mesh.quadsOfCell = quadsOfCells(quads, cells.size());
-        mesh.blocks = initialBlocks(labels, cells, top, merge);
+        mesh.blocks = initialBlocks(labels, cells, top, farTop, merge, *near);
         for (std::size_t b = 0; b < mesh.blocks.size(); ++b) mesh.assign(b);
         findRimQuads(mesh, 0);
     }
     progress.checkCancelled();
 
-    const double voxelMm = labels.voxelSize()[0];
-    const auto near = top > 0 ? blocksNearTeeth(quads, cells, top, voxelMm * double(1 << top), options.boneNearTeethMm)
-                              : openvdb::BoolGrid::create(false);
     const CertifyRule rule{options, top, near->getConstAccessor(), std::cos(radians(options.minAngleDeg))};
     std::vector<char> dirty(mesh.blocks.size(), 1);
     std::vector<Tri> checked;  // the triangles of the last intersection check, sorted

@@ -46,6 +46,9 @@ struct AdaptiveOptions {
     /// Largest block: 2^maxLevel dual cells per side (3: 8 voxels, 0.4 mm at 0.05 mm); 0 = off,
     /// at most 5 (the block tests take a block and its ring as rows of 64 bits).
     int maxLevel = 3;
+    /// Bone / outside blocks farther than boneNearTeethMm from the teeth may be this many levels
+    /// larger (0 to 2; at most level 5 in all).
+    int farBoneExtraLevels = 1;
     InterfaceBounds bounds;        ///< per interface (set from the simplification's options)
     double boneNearTeethMm = 2.0;  ///< bone / outside nearer a tooth or PDL gets the near bound
     /// Shares of the interface's bound a block may use: its fine vertices from its triangles, and
