@@ -537,6 +537,7 @@ std::vector<Block> initialBlocks(const openvdb::Int32Grid& labels, const std::ve
 nlohmann::json toJson(const AdaptiveStats& s) {
     return {{"fine_cells", s.fineCells},
             {"blocks", s.blocks},
+            {"far_bone_blocks", s.farBoneBlocks},
             {"cells_merged", s.cellsMerged},
             {"split_for_error", s.splitForError},
             {"split_for_intersection", s.splitForIntersection},
@@ -613,7 +614,7 @@ void splitBlocks(Mesh& mesh, const std::vector<std::size_t>& split, bool toFine,
 
 /// The carried cells of every merged block, by the emitted triangle that carries them, and the
 /// sample error of every fan's corners; counts the blocks in `st`.
-void collectCarried(Mesh& mesh, std::size_t cellCount, AdaptiveSurface& out, AdaptiveStats& st) {
+void collectCarried(Mesh& mesh, std::size_t cellCount, int top, AdaptiveSurface& out, AdaptiveStats& st) {
     out.sampleErrorMm.assign(cellCount, 0.0f);
     bool anyBlock = false;
     for (const Block& k : mesh.blocks) anyBlock = anyBlock || !k.members.empty();
@@ -648,6 +649,7 @@ void collectCarried(Mesh& mesh, std::size_t cellCount, AdaptiveSurface& out, Ada
             for (std::int32_t c : out.triangles[std::size_t(t)])
                 out.sampleErrorMm[std::size_t(c)] = std::max(out.sampleErrorMm[std::size_t(c)], k.sampleErrorMm);
         ++st.blocks;
+        st.farBoneBlocks += k.level > top;
         st.cellsMerged += k.members.size();
         st.maxCarriedErrorMm = std::max(st.maxCarriedErrorMm, double(k.carriedErrorMm));
         st.maxSampleErrorMm = std::max(st.maxSampleErrorMm, double(k.sampleErrorMm));
@@ -707,7 +709,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
         splitBlocks(mesh, split, toFine, labels, cells, merge, dirty);
         progress.checkCancelled();
     }
-    collectCarried(mesh, cells.size(), out, st);
+    collectCarried(mesh, cells.size(), top, out, st);
     st.seconds = secondsSince(start);
     return out;
 }

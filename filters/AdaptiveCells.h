@@ -77,6 +77,7 @@ struct AdaptiveOptions {
 struct AdaptiveStats {
     std::size_t fineCells = 0;        ///< dual cells of the fine extraction (its vertices)
     std::size_t blocks = 0;           ///< merged blocks in the result
+    std::size_t farBoneBlocks = 0;    ///< of them, above maxLevel (AdaptiveOptions::farBoneExtraLevels)
     std::size_t cellsMerged = 0;      ///< fine dual cells that they stand for
     std::size_t splitForError = 0;    ///< blocks split because the certificate failed
     std::size_t splitForIntersection = 0;  ///< blocks dropped at a self-intersection or degenerate triangle

@@ -39,6 +39,9 @@ TEST(SlowRunMandible, MeshMeetsTheConformityQualityAndAccuracyTargets) {
     std::ifstream in(fs::path(run) / "run.json");
     const auto record = nlohmann::json::parse(in);
     EXPECT_EQ(record.at("mesh").at("tets").get<std::size_t>(), f.quality.tets);
+    // The bone far from the teeth took blocks one level larger (AdaptiveOptions::farBoneExtraLevels),
+    // and every figure above holds with them.
+    EXPECT_GT(record.at("surface").at("adaptive").at("far_bone_blocks").get<std::size_t>(), 0u);
 }
 
 // The shared maxilla the same way (issue #22: "passes the same mesh checks"); its 15 real teeth.

@@ -152,8 +152,8 @@ TEST(ExtractInterfaces, AdaptiveIsTheFineSurfaceWithinItsBoundsWithFewerTriangle
     const InterfaceComplex adaptive = extractInterfaces(syn.field, options, noProgress(), &stats);
     const InterfaceComplex fine = extractInterfaces(syn.field, test::fineExtraction());
     const InterfaceComplex corners = withoutCarried(adaptive);
-    std::printf("phantom: %zu fine triangles, %zu adaptive (%zu blocks of %zu cells; carried %.4f, samples %.4f mm)\n",
-                fine.surface.triangles.size(), adaptive.surface.triangles.size(), stats.adaptive.blocks,
+    std::printf("phantom: %zu fine triangles, %zu adaptive (%zu blocks, %zu of them far, of %zu cells; carried %.4f, samples %.4f mm)\n",
+                fine.surface.triangles.size(), adaptive.surface.triangles.size(), stats.adaptive.blocks, stats.adaptive.farBoneBlocks,
                 stats.adaptive.cellsMerged, stats.adaptive.maxCarriedErrorMm, stats.adaptive.maxSampleErrorMm);
     EXPECT_LT(adaptive.surface.triangles.size(), fine.surface.triangles.size() * 3 / 4);
     // the same regions, closed, manifold, of the same topology, intersection-free
