@@ -334,6 +334,7 @@ bool errorsWithin(Block& b, const Mesh& mesh, Scratch& s, double carriedMm, doub
     const auto corner = [&](const Tri& t, int k) -> const Vec3& { return P[std::size_t(t[std::size_t(k)])]; };
     double worst2 = 0;
     b.carrier.assign(b.members.size(), -1);
+    if (s.fan.empty()) return false;  // no triangle carries the members
     // each fan triangle's bounding sphere: one farther than the nearest so far is not looked at
     s.spheres.clear();
     for (const Tri& t : s.fan) {
@@ -349,8 +350,8 @@ bool errorsWithin(Block& b, const Mesh& mesh, Scratch& s, double carriedMm, doub
         // The previous member's carrier first (members are near each other): its distance prunes
         // most of the fan at once. The nearest is still the lowest-indexed of the nearest.
         const std::int32_t guess = i > 0 ? b.carrier[i - 1] : 0;
-        double d2 = s.fan.empty() ? std::numeric_limits<double>::infinity() : distance2(x, std::size_t(guess)), d = std::sqrt(d2);
-        b.carrier[i] = s.fan.empty() ? -1 : guess;  // index into the fan; made a triangle id at the end
+        double d2 = distance2(x, std::size_t(guess)), d = std::sqrt(d2);
+        b.carrier[i] = guess;  // index into the fan; made a triangle id at the end
         for (std::size_t t = 0; t < s.fan.size(); ++t) {
             if (std::int32_t(t) == guess) continue;
             const auto& [centre, radius] = s.spheres[t];

@@ -6,7 +6,6 @@
 #include "io/MeshIO.h"
 #include "io/ParallelInOrder.h"
 
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
