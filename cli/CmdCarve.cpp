@@ -63,7 +63,8 @@ void runCarve(const CarveCliOptions& opt, const GlobalOptions& global) {
     co = carveOptionsFor(surfaces, co, opt.voxelMm);
 
     const auto tLevel = std::chrono::steady_clock::now();
-    const JawLevelSets levelSets = jawLevelSets(surfaces, *jc, opt.voxelMm, opt.bandVoxels, toothBandVoxels(co, opt.voxelMm), progress);
+    const JawLevelSets levelSets = jawLevelSets(surfaces, *jc, opt.voxelMm, opt.bandVoxels, defaultRunOptions().boneFarBandVoxels,
+                                                toothBandVoxels(co, opt.voxelMm), progress);
     const double secondsLevelSets = secondsSince(tLevel);
     const auto peakLevelSets = peakResidentMemoryBytes();
 

@@ -151,7 +151,7 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
         for (const std::string& note : surfaces.notes) record["notes"].push_back(note);
         CarveOptions carve = carveOptionsFor(surfaces, options.carve, options.voxelSizeMm);
         JawLevelSets levelSets = log.run(jaw + ": level sets", progress, [&] {
-            return jawLevelSets(surfaces, jawCase, options.voxelSizeMm, options.bandVoxels,
+            return jawLevelSets(surfaces, jawCase, options.voxelSizeMm, options.bandVoxels, options.boneFarBandVoxels,
                                 toothBandVoxels(carve, options.voxelSizeMm), progress);
         });
         if (surfaces.pdlKept) evalOptions.pdlTargetMm = 0.0;  // a kept PDL is measured, not judged

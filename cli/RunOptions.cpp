@@ -41,6 +41,7 @@ constexpr double kAny = std::numeric_limits<double>::infinity();
 const NumberKey kNumberKeys[] = {
     {"voxel_mm", [](RunOptions& o) -> double& { return o.voxelSizeMm; }, 0, 10, true},
     {"band_voxels", [](RunOptions& o) -> double& { return o.bandVoxels; }, 1, 1000},
+    {"bone_far_band_voxels", [](RunOptions& o) -> double& { return o.boneFarBandVoxels; }, 1, 1000},
     {"scale", [](RunOptions& o) -> double& { return o.load.scale; }, 0, 1e6},
     {"pdl_thickness_mm", [](RunOptions& o) -> double& { return o.carve.pdlThicknessMm; }, 0, 10, true},
     {"pdl_ratio", [](RunOptions& o) -> double& { return o.carve.pdlRatio; }, 0, 1},

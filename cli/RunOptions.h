@@ -19,6 +19,10 @@ namespace jawmesh {
 struct RunOptions {
     double voxelSizeMm = 0.05;     ///< level-set voxel; the PDL needs >= 4 voxels across
     double bandVoxels = 3.0;       ///< narrow-band half width of the input level sets
+    /// The bone's band half width away from the teeth (levelset/JawLevelSets.h): carving reads
+    /// the bone's distance beyond its surface only around the teeth, and the band's cost grows
+    /// with its width (2 instead of 3 voxels: the shared mandible's level sets 2 s faster).
+    double boneFarBandVoxels = 2.0;
     LoadOptions load;
     CarveOptions carve;
     ExtractOptions extract;

@@ -211,6 +211,39 @@ void voxelRange(const std::vector<Vec3>& vx, const Tri& tri, double r, openvdb::
     }
 }
 
+/// Each triangle's band radius (voxels): the full half width when its box widened by it reaches a
+/// wide box, the far one otherwise. Then every voxel of a wide box meets each triangle within the
+/// full half width of it, and every other voxel each triangle within the far half width.
+struct Radii {
+    double wide = 0, far = 0;
+    std::vector<char> isWide;  ///< per triangle; empty when far == wide
+    double of(std::size_t t) const { return isWide.empty() || isWide[t] ? wide : far; }
+};
+
+Radii radiiOf(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, const BandWidths& widths) {
+    Radii r{widths.halfWidthVoxels, std::min(widths.farHalfWidthVoxels, widths.halfWidthVoxels), {}};
+    if (!(r.far < r.wide)) return r;
+    r.isWide.assign(triangles.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t t = range.begin(); t < range.end(); ++t) {
+            openvdb::Coord lo, hi;
+            voxelRange(vx, triangles[t], r.wide, lo, hi);
+            const openvdb::CoordBBox box(lo, hi);
+            for (const openvdb::CoordBBox& w : widths.wideBoxes) r.isWide[t] = r.isWide[t] || w.hasOverlap(box);
+        }
+    });
+    return r;
+}
+
+/// Whether voxel c keeps a value whose square is d2 (voxels^2): under the full half width in a
+/// wide box, under the far one elsewhere.
+bool inBand(const BandWidths& widths, const Radii& radii, const openvdb::Coord& c, float d2) {
+    if (radii.isWide.empty() || d2 < float(radii.far * radii.far)) return true;
+    for (const openvdb::CoordBBox& w : widths.wideBoxes)
+        if (w.isInside(c)) return true;
+    return false;
+}
+
 /// The leaf columns (x, y) that the triangles' widened boxes cover.
 struct LeafColumns {
     openvdb::Coord leafMin{std::numeric_limits<int>::max()}, leafMax{std::numeric_limits<int>::min()};
@@ -220,11 +253,11 @@ struct LeafColumns {
     }
 };
 
-LeafColumns leafColumns(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, double r) {
+LeafColumns leafColumns(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, const Radii& r) {
     LeafColumns c;
-    for (const Tri& tri : triangles) {
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
         openvdb::Coord lo, hi;
-        voxelRange(vx, tri, r, lo, hi);
+        voxelRange(vx, triangles[t], r.of(t), lo, hi);
         for (int d = 0; d < 3; ++d) {
             c.leafMin[d] = std::min(c.leafMin[d], leafOf(lo[d]));
             c.leafMax[d] = std::max(c.leafMax[d], leafOf(hi[d]));
@@ -261,7 +294,7 @@ void forEachLeaf(const std::vector<Vec3>& vx, const Tri& tri, double r, const Le
 
 /// (triangle, leaf) pairs bucketed by leaf column: count, prefix sum, fill. offsets[c] is where
 /// column c starts in the entries (offsets has one more element than columns).
-std::vector<Entry> bucketByColumn(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, double r,
+std::vector<Entry> bucketByColumn(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, const Radii& r,
                                   const LeafColumns& columns, std::vector<std::uint64_t>& offsets, Progress& progress) {
     constexpr std::size_t kGrain = 4096;
     std::vector<std::atomic<std::uint64_t>> cursor(columns.count);
@@ -269,7 +302,7 @@ std::vector<Entry> bucketByColumn(const std::vector<Vec3>& vx, const std::vector
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
         progress.checkCancelled();
         for (std::size_t t = range.begin(); t < range.end(); ++t)
-            forEachLeaf(vx, triangles[t], r, columns,
+            forEachLeaf(vx, triangles[t], r.of(t), columns,
                         [&](std::size_t col, int, float) { cursor[col].fetch_add(1, std::memory_order_relaxed); });
     });
     offsets.assign(columns.count + 1, 0);
@@ -284,7 +317,7 @@ std::vector<Entry> bucketByColumn(const std::vector<Vec3>& vx, const std::vector
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
         progress.checkCancelled();
         for (std::size_t t = range.begin(); t < range.end(); ++t)
-            forEachLeaf(vx, triangles[t], r, columns, [&](std::size_t col, int lz, float nearness) {
+            forEachLeaf(vx, triangles[t], r.of(t), columns, [&](std::size_t col, int lz, float nearness) {
                 entries[cursor[col].fetch_add(1, std::memory_order_relaxed)] = {lz, nearness, static_cast<std::uint32_t>(t)};
             });
     });
@@ -295,8 +328,9 @@ std::vector<Entry> bucketByColumn(const std::vector<Vec3>& vx, const std::vector
 /// tighten best[] so that the bounds reject the rest; the triangle index breaks ties so the order
 /// is canonical), then one leaf per run of equal leafZ.
 void rasteriseColumn(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, Entry* b, Entry* e, int lx, int ly,
-                     double r, double voxelSizeMm, float background, std::vector<std::unique_ptr<LeafT>>& out) {
-    const float r2 = static_cast<float>(r * r);
+                     const BandWidths& widths, const Radii& radii, double voxelSizeMm, float background,
+                     std::vector<std::unique_ptr<LeafT>>& out) {
+    const float r2 = static_cast<float>(radii.wide * radii.wide);
     // Active values stay below the background even where float rounding would reach it.
     const float insideBand = std::nextafter(background, 0.0f);
     float best[LeafT::SIZE];
@@ -312,10 +346,10 @@ void rasteriseColumn(const std::vector<Vec3>& vx, const std::vector<Tri>& triang
         const Vec3 originVec(origin.x(), origin.y(), origin.z());
         std::fill(best, best + LeafT::SIZE, r2);
         for (Entry* p = run; p != runEnd; ++p)
-            rasteriseBand(localTriangle(vx, triangles[p->triangle], originVec), static_cast<float>(r), best);
+            rasteriseBand(localTriangle(vx, triangles[p->triangle], originVec), static_cast<float>(radii.of(p->triangle)), best);
         std::unique_ptr<LeafT> leaf;
         for (openvdb::Index i = 0; i < LeafT::SIZE; ++i) {
-            if (!(best[i] < r2)) continue;
+            if (!(best[i] < r2) || !inBand(widths, radii, origin + LeafT::offsetToLocalCoord(i), best[i])) continue;
             if (!leaf) leaf = std::make_unique<LeafT>(origin, background, false);
             leaf->setValueOn(i, std::min(static_cast<float>(std::sqrt(best[i]) * voxelSizeMm), insideBand));
         }
@@ -328,10 +362,15 @@ void rasteriseColumn(const std::vector<Vec3>& vx, const std::vector<Tri>& triang
 
 openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, double voxelSizeMm,
                                      double halfWidthVoxels, Progress& progress) {
-    const float background = static_cast<float>(halfWidthVoxels * voxelSizeMm);
+    return bandDistance(vx, triangles, voxelSizeMm, BandWidths{halfWidthVoxels, halfWidthVoxels, {}}, progress);
+}
+
+openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, double voxelSizeMm,
+                                     const BandWidths& widths, Progress& progress) {
+    const float background = static_cast<float>(widths.halfWidthVoxels * voxelSizeMm);
     auto tree = std::make_shared<openvdb::FloatTree>(background);
     if (triangles.empty()) return tree;
-    const double r = halfWidthVoxels;
+    const Radii r = radiiOf(vx, triangles, widths);
     const LeafColumns columns = leafColumns(vx, triangles, r);
     std::vector<std::uint64_t> offsets;
     std::vector<Entry> entries = bucketByColumn(vx, triangles, r, columns, offsets, progress);
@@ -344,8 +383,8 @@ openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& vx, const std::vec
         for (std::size_t col = range.begin(); col < range.end(); ++col) {
             const int lx = columns.leafMin.x() + static_cast<int>(col / columns.ny);
             const int ly = columns.leafMin.y() + static_cast<int>(col % columns.ny);
-            rasteriseColumn(vx, triangles, entries.data() + offsets[col], entries.data() + offsets[col + 1], lx, ly, r, voxelSizeMm,
-                            background, leaves[col]);
+            rasteriseColumn(vx, triangles, entries.data() + offsets[col], entries.data() + offsets[col + 1], lx, ly, widths, r,
+                            voxelSizeMm, background, leaves[col]);
             const std::size_t done = ++columnsDone;
             if (done % 1024 == 0) progress.update(0.1 + 0.85 * static_cast<double>(done) / static_cast<double>(columns.count));
         }

@@ -34,4 +34,20 @@ namespace jawmesh {
 openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& indexVertices, const std::vector<Tri>& triangles,
                                      double voxelSizeMm, double halfWidthVoxels, Progress& progress = noProgress());
 
+/// A band of two widths: halfWidthVoxels on the voxels of wideBoxes, farHalfWidthVoxels (at most
+/// halfWidthVoxels) everywhere else. For a surface of which only part needs the wide band (the
+/// bone, whose distance carving reads far off its surface only around the teeth): the cost of the
+/// band grows with its width.
+struct BandWidths {
+    double halfWidthVoxels = 3.0;
+    double farHalfWidthVoxels = 3.0;
+    std::vector<openvdb::CoordBBox> wideBoxes;  ///< index space (voxel coordinates)
+};
+
+/// bandDistance above with the widths of `widths`: a voxel is active when it is closer than the
+/// width at it; the background is halfWidthVoxels * voxelSizeMm. The same values as the uniform
+/// band on the voxels both keep (each voxel meets every triangle within its width).
+openvdb::FloatTree::Ptr bandDistance(const std::vector<Vec3>& indexVertices, const std::vector<Tri>& triangles,
+                                     double voxelSizeMm, const BandWidths& widths, Progress& progress = noProgress());
+
 }  // namespace jawmesh

@@ -6,15 +6,36 @@
 #include "levelset/MeshToLevelSet.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace jawmesh {
 
+namespace {
+
+/// The bone's band widths: wide within kBoneWideBandMarginMm of each tooth's bounding box.
+BandWidths boneBandWidths(const JawSurfaces& surfaces, double voxelMm, double boneBandVoxels, double boneFarBandVoxels) {
+    BandWidths widths{boneBandVoxels, std::min(boneFarBandVoxels, boneBandVoxels), {}};
+    for (const auto& [unn, mesh] : surfaces.teeth) {
+        if (mesh.triangles.empty()) continue;
+        const BBox box = boundingBox(mesh);
+        const auto index = [&](double mm, bool up) {
+            return int(up ? std::ceil((mm + kBoneWideBandMarginMm) / voxelMm) : std::floor((mm - kBoneWideBandMarginMm) / voxelMm));
+        };
+        widths.wideBoxes.emplace_back(openvdb::Coord(index(box.min.x(), false), index(box.min.y(), false), index(box.min.z(), false)),
+                                      openvdb::Coord(index(box.max.x(), true), index(box.max.y(), true), index(box.max.z(), true)));
+    }
+    return widths;
+}
+
+}  // namespace
+
 JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double boneBandVoxels,
-                          double toothBandVoxels, Progress& progress) {
-    auto levelSet = [&](const SurfaceMesh& mesh, double bandVoxels, Label label, const std::string& source) {
+                          double boneFarBandVoxels, double toothBandVoxels, Progress& progress) {
+    auto levelSet = [&](const SurfaceMesh& mesh, const BandWidths& widths, Label label, const std::string& source) {
         try {
-            openvdb::FloatGrid::Ptr grid = meshToLevelSet(mesh, voxelMm, bandVoxels, progress);
+            MeshToLevelSetStats stats;
+            openvdb::FloatGrid::Ptr grid = meshToLevelSet(mesh, voxelMm, widths, stats, progress);
             grid->setName(labelName(label));
             return grid;
         } catch (const Error& e) {
@@ -22,9 +43,11 @@ JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, d
         }
     };
     JawLevelSets sets;
-    sets.bone = levelSet(surfaces.bone, boneBandVoxels, boneLabel(surfaces.jaw), boneSource(jawCase));
+    sets.bone = levelSet(surfaces.bone, boneBandWidths(surfaces, voxelMm, boneBandVoxels, boneFarBandVoxels),
+                         boneLabel(surfaces.jaw), boneSource(jawCase));
     const double toothBand = std::max(boneBandVoxels, toothBandVoxels);
-    for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = levelSet(mesh, toothBand, toothLabel(unn), toothSource(jawCase, unn));
+    for (const auto& [unn, mesh] : surfaces.teeth)
+        sets.teeth[unn] = levelSet(mesh, BandWidths{toothBand, toothBand, {}}, toothLabel(unn), toothSource(jawCase, unn));
     // Teeth in contact overlap a little and the carving splits them; a large shared volume is a
     // segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.
     for (auto a = sets.teeth.begin(); a != sets.teeth.end(); ++a)

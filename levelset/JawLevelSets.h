@@ -21,11 +21,16 @@ struct JawLevelSets {
 
 /// meshToLevelSet of the bone and every tooth of `surfaces` (read from `jawCase`), band half widths
 /// in voxels: the teeth's the wider of the bone's and toothBandVoxels (what carving reads of them:
-/// levelset/CarveGaps.h toothBandVoxels). Throws Error
+/// levelset/CarveGaps.h toothBandVoxels); the bone's boneBandVoxels within kBoneWideBandMarginMm
+/// of a tooth's bounding box (carving extends the bone's distance only within about 1 mm of a
+/// tooth) and boneFarBandVoxels (at most boneBandVoxels) elsewhere. Throws Error
 /// naming the input file for a surface that cannot become a level set (e.g. only degenerate
 /// triangles: a point cloud) and for two teeth sharing more than 30% of the smaller one's volume
 /// (levelset/InsideOverlap.h: a tooth exported twice, teeth merged). Throws Cancelled.
 JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double boneBandVoxels,
-                          double toothBandVoxels, Progress& progress = noProgress());
+                          double boneFarBandVoxels, double toothBandVoxels, Progress& progress = noProgress());
+
+/// Around each tooth's bounding box, how far the bone keeps its full band (mm).
+constexpr double kBoneWideBandMarginMm = 2.0;
 
 }  // namespace jawmesh

@@ -43,8 +43,8 @@ inline int leafOffset(int x, int y, int z) { return ((x & 7) << 6) | ((y & 7) <<
 // Exact unsigned distance band (levelset/BandDistance.h) as a grid on the shared transform.
 openvdb::FloatGrid::Ptr unsignedBand(const std::vector<Vec3>& indexVertices, const std::vector<Tri>& triangles,
                                      const openvdb::math::Transform::Ptr& transform, double voxelSizeMm,
-                                     double halfWidthVoxels, Progress& progress) {
-    openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(bandDistance(indexVertices, triangles, voxelSizeMm, halfWidthVoxels, progress));
+                                     const BandWidths& widths, Progress& progress) {
+    openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(bandDistance(indexVertices, triangles, voxelSizeMm, widths, progress));
     grid->setTransform(transform);
     return grid;
 }
@@ -208,7 +208,7 @@ std::size_t signByLines(std::vector<Pending>& pending, openvdb::tree::LeafManage
 /// enough of them to matter, the band is recomputed from the boundary triangles alone and takes its
 /// signs from `grid` (whose band contains the new one).
 openvdb::FloatGrid::Ptr withoutInternalTriangles(openvdb::FloatGrid::Ptr grid, const OrientedSurface& oriented,
-                                                 const std::vector<Vec3>& indexVertices, double voxelSizeMm, double halfWidthVoxels,
+                                                 const std::vector<Vec3>& indexVertices, double voxelSizeMm, const BandWidths& widths,
                                                  MeshToLevelSetStats& stats, Progress& progress) {
     const std::vector<char> internal = findNonBoundaryTriangles(*grid, oriented, indexVertices, voxelSizeMm, stats.internalTriangles);
     constexpr std::size_t kMinInternal = 16;
@@ -218,14 +218,14 @@ openvdb::FloatGrid::Ptr withoutInternalTriangles(openvdb::FloatGrid::Ptr grid, c
     for (std::size_t t = 0; t < oriented.triangles.size(); ++t)
         if (!internal[t]) boundary.push_back(oriented.triangles[t]);
     SubProgress again(progress, 0.95, 0.99);
-    openvdb::FloatGrid::Ptr rebuilt = unsignedBand(indexVertices, boundary, grid->transformPtr(), voxelSizeMm, halfWidthVoxels, again);
+    openvdb::FloatGrid::Ptr rebuilt = unsignedBand(indexVertices, boundary, grid->transformPtr(), voxelSizeMm, widths, again);
     openvdb::tree::LeafManager<openvdb::FloatTree> newLeaves(rebuilt->tree());
     newLeaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
         auto acc = grid->getConstAccessor();
         for (auto it = leaf.beginValueOn(); it; ++it)
             if (acc.getValue(it.getCoord()) < 0.0f) it.setValue(-std::abs(*it));
     });
-    const float background = static_cast<float>(halfWidthVoxels * voxelSizeMm);
+    const float background = static_cast<float>(widths.halfWidthVoxels * voxelSizeMm);
     openvdb::tools::signedFloodFillWithValues(rebuilt->tree(), background, -background);
     return rebuilt;
 }
@@ -240,7 +240,13 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
 
 openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, double halfWidthVoxels,
                                        MeshToLevelSetStats& stats, Progress& progress) {
-    requireLevelSetInput(mesh, voxelSizeMm, halfWidthVoxels);
+    return meshToLevelSet(mesh, voxelSizeMm, BandWidths{halfWidthVoxels, halfWidthVoxels, {}}, stats, progress);
+}
+
+openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, const BandWidths& widths,
+                                       MeshToLevelSetStats& stats, Progress& progress) {
+    requireLevelSetInput(mesh, voxelSizeMm, widths.halfWidthVoxels);
+    requireLevelSetInput(mesh, voxelSizeMm, widths.farHalfWidthVoxels);
     stats = MeshToLevelSetStats{};
     stats.inputTriangles = mesh.triangles.size();
     ProgressStage stage(progress, "levelset");
@@ -267,7 +273,7 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
     std::vector<Vec3> indexVertices(oriented.vertices.size());
     for (std::size_t i = 0; i < indexVertices.size(); ++i) indexVertices[i] = oriented.vertices[i] / voxelSizeMm;
     SubProgress bandProgress(progress, 0.1, 0.6);
-    openvdb::FloatGrid::Ptr grid = unsignedBand(indexVertices, oriented.triangles, transform, voxelSizeMm, halfWidthVoxels, bandProgress);
+    openvdb::FloatGrid::Ptr grid = unsignedBand(indexVertices, oriented.triangles, transform, voxelSizeMm, widths, bandProgress);
     stats.secondsUnsigned = secondsSince(t0);
     stage.update(0.6);
 
@@ -288,11 +294,11 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
         stage.update(0.9);
         if (!pending.empty()) stats.unresolvedVoxels = signByLines(pending, leaves, oriented, voxelSizeMm, progress);
     }
-    const float background = static_cast<float>(halfWidthVoxels * voxelSizeMm);
+    const float background = static_cast<float>(widths.halfWidthVoxels * voxelSizeMm);
     openvdb::tools::signedFloodFillWithValues(grid->tree(), background, -background);
 
     // 7. Without the triangles inside the union, when there are enough to matter.
-    grid = withoutInternalTriangles(grid, oriented, indexVertices, voxelSizeMm, halfWidthVoxels, stats, progress);
+    grid = withoutInternalTriangles(grid, oriented, indexVertices, voxelSizeMm, widths, stats, progress);
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     stats.activeVoxels = static_cast<std::size_t>(grid->activeVoxelCount());
     stats.secondsSign = secondsSince(t0);

@@ -15,6 +15,7 @@
 
 #include "io/Progress.h"
 #include "io/SurfaceMesh.h"
+#include "levelset/BandDistance.h"
 
 #include <nlohmann/json.hpp>
 #include <openvdb/openvdb.h>
@@ -69,6 +70,11 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
 
 /// As above, and fills stats.
 openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, double halfWidthVoxels,
+                                       MeshToLevelSetStats& stats, Progress& progress = noProgress());
+
+/// As above with a band of two widths (levelset/BandDistance.h; both at least 1 voxel, boxes in
+/// index space: mm / voxelSizeMm); the background is widths.halfWidthVoxels * voxelSizeMm.
+openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, const BandWidths& widths,
                                        MeshToLevelSetStats& stats, Progress& progress = noProgress());
 
 }  // namespace jawmesh

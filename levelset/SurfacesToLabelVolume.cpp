@@ -95,7 +95,7 @@ LabelVolume labelVolumeFromSurfaces(const JawSurfaces& surfaces, const JawCase& 
     // The distances must reach past the thickest PDL and across a socket's gap.
     const double bandVoxels =
         pdl.thicknessMm ? std::max(2.0, std::ceil(std::max(pdl.maxThicknessMm, kSocketGapMm) / voxelMm) + 1) : 2.0;
-    const JawLevelSets sets = jawLevelSets(surfaces, jawCase, voxelMm, bandVoxels, bandVoxels);
+    const JawLevelSets sets = jawLevelSets(surfaces, jawCase, voxelMm, bandVoxels, bandVoxels, bandVoxels);
     openvdb::CoordBBox box = sets.bone->evalActiveVoxelBoundingBox();
     for (const auto& [unn, grid] : sets.teeth) box.expand(grid->evalActiveVoxelBoundingBox());
     box.expand(1);

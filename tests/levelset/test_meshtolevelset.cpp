@@ -205,6 +205,42 @@ TEST_F(MeshToLevelSetTest, BandDistanceIsExactAgainstBruteForce) {
     }
 }
 
+TEST_F(MeshToLevelSetTest, TwoWidthBandKeepsTheUniformBandsValues) {
+    // Wide (3 voxels) on the x < 0 half of a sphere, 2 voxels elsewhere: every voxel the wide
+    // part keeps has the uniform band's value; elsewhere exactly the voxels under 2 voxels do.
+    const SurfaceMesh sphere = icosphere(0.6, 3, Vec3(0.013, -0.021, 0.007));
+    const double voxel = 0.1;
+    std::vector<Vec3> indexVertices;
+    for (const Vec3& v : sphere.vertices) indexVertices.push_back(v / voxel);
+    const openvdb::CoordBBox wide(openvdb::Coord(-20), openvdb::Coord(-1, 20, 20));
+    const auto uniform = bandDistance(indexVertices, sphere.triangles, voxel, 3.0);
+    const auto twoWidths = bandDistance(indexVertices, sphere.triangles, voxel, BandWidths{3.0, 2.0, {wide}});
+    EXPECT_FLOAT_EQ(twoWidths->background(), uniform->background());
+    std::size_t inWide = 0, outside = 0, wrong = 0;
+    for (auto it = uniform->cbeginValueOn(); it; ++it) {
+        const openvdb::Coord c = it.getCoord();
+        float value = 0.0f;
+        const bool active = twoWidths->probeValue(c, value);
+        const bool kept = wide.isInside(c) || *it < 2.0 * voxel;
+        (wide.isInside(c) ? inWide : outside) += 1;
+        if (active != kept || (active && value != *it)) ++wrong;
+    }
+    EXPECT_GT(inWide, 1000u);
+    EXPECT_GT(outside, 1000u);
+    EXPECT_EQ(wrong, 0u);
+    std::size_t extra = 0;  // none the uniform band lacks
+    for (auto it = twoWidths->cbeginValueOn(); it; ++it) extra += !uniform->isValueOn(it.getCoord());
+    EXPECT_EQ(extra, 0u);
+    // The level set keeps its signs: the same as the uniform one's on the voxels both have.
+    MeshToLevelSetStats stats;
+    const auto a = meshToLevelSet(sphere, voxel, 3.0), b = meshToLevelSet(sphere, voxel, BandWidths{3.0, 2.0, {wide}}, stats);
+    std::size_t differ = 0;
+    const auto acc = a->getConstAccessor();
+    for (auto it = b->cbeginValueOn(); it; ++it) differ += acc.getValue(it.getCoord()) != *it;
+    EXPECT_EQ(differ, 0u);
+    EXPECT_LT(b->activeVoxelCount(), a->activeVoxelCount());
+}
+
 TEST_F(MeshToLevelSetTest, SameGridWithOneAndTwoThreads) {
     // The holey, half-flipped sphere exercises every path (repair, hole patches, scanlines, Embree fallback).
     const SurfaceMesh m = test::flipHalf(test::punchHoles(icosphere(1.0, 5), 6, 0.08, 0.15));
