@@ -21,7 +21,8 @@ struct RunOptions {
     double bandVoxels = 3.0;       ///< narrow-band half width of the input level sets
     /// The bone's band half width away from the teeth (levelset/JawLevelSets.h): carving reads
     /// the bone's distance beyond its surface only around the teeth, and the band's cost grows
-    /// with its width (2 instead of 3 voxels: the shared mandible's level sets 2 s faster).
+    /// with its width (2 instead of 3 voxels there: the shared mandible's level sets about 1 s
+    /// faster, the same mesh).
     double boneFarBandVoxels = 2.0;
     LoadOptions load;
     CarveOptions carve;
