@@ -30,7 +30,9 @@ struct JawLevelSets {
 JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double boneBandVoxels,
                           double boneFarBandVoxels, double toothBandVoxels, Progress& progress = noProgress());
 
-/// Around each tooth's bounding box, how far the bone keeps its full band (mm).
+/// Around each tooth's bounding box, how far the bone keeps its full band (mm). The edits
+/// (levelset/JawEdits.h) all act at an input tooth (its socket, its crest), so inside these boxes;
+/// an edit placed away from every tooth would need its site added to them.
 constexpr double kBoneWideBandMarginMm = 2.0;
 
 }  // namespace jawmesh
