@@ -235,11 +235,20 @@ Radii radiiOf(const std::vector<Vec3>& vx, const std::vector<Tri>& triangles, co
     return r;
 }
 
-/// Whether voxel c keeps a value whose square is d2 (voxels^2): under the full half width in a
-/// wide box, under the far one elsewhere.
-bool inBand(const BandWidths& widths, const Radii& radii, const openvdb::Coord& c, float d2) {
-    if (radii.isWide.empty() || d2 < float(radii.far * radii.far)) return true;
+/// The wide boxes that reach the leaf at `origin` (most leaves: none or one), so that its voxels
+/// test only those.
+void wideBoxesAt(const BandWidths& widths, const openvdb::Coord& origin, std::vector<openvdb::CoordBBox>& out) {
+    out.clear();
+    const openvdb::CoordBBox leaf(origin, origin.offsetBy(kLeafDim - 1));
     for (const openvdb::CoordBBox& w : widths.wideBoxes)
+        if (w.hasOverlap(leaf)) out.push_back(w);
+}
+
+/// Whether voxel c keeps a value whose square is d2 (voxels^2): under the full half width in a
+/// wide box (`wideHere`: those reaching its leaf), under the far one elsewhere.
+bool inBand(const Radii& radii, const std::vector<openvdb::CoordBBox>& wideHere, const openvdb::Coord& c, float d2) {
+    if (radii.isWide.empty() || d2 < float(radii.far * radii.far)) return true;
+    for (const openvdb::CoordBBox& w : wideHere)
         if (w.isInside(c)) return true;
     return false;
 }
@@ -334,6 +343,7 @@ void rasteriseColumn(const std::vector<Vec3>& vx, const std::vector<Tri>& triang
     // Active values stay below the background even where float rounding would reach it.
     const float insideBand = std::nextafter(background, 0.0f);
     float best[LeafT::SIZE];
+    std::vector<openvdb::CoordBBox> wideHere;
     std::sort(b, e, [](const Entry& p, const Entry& q) {
         if (p.leafZ != q.leafZ) return p.leafZ < q.leafZ;
         if (p.nearness != q.nearness) return p.nearness < q.nearness;
@@ -347,9 +357,10 @@ void rasteriseColumn(const std::vector<Vec3>& vx, const std::vector<Tri>& triang
         std::fill(best, best + LeafT::SIZE, r2);
         for (Entry* p = run; p != runEnd; ++p)
             rasteriseBand(localTriangle(vx, triangles[p->triangle], originVec), static_cast<float>(radii.of(p->triangle)), best);
+        wideBoxesAt(widths, origin, wideHere);
         std::unique_ptr<LeafT> leaf;
         for (openvdb::Index i = 0; i < LeafT::SIZE; ++i) {
-            if (!(best[i] < r2) || !inBand(widths, radii, origin + LeafT::offsetToLocalCoord(i), best[i])) continue;
+            if (!(best[i] < r2) || !inBand(radii, wideHere, origin + LeafT::offsetToLocalCoord(i), best[i])) continue;
             if (!leaf) leaf = std::make_unique<LeafT>(origin, background, false);
             leaf->setValueOn(i, std::min(static_cast<float>(std::sqrt(best[i]) * voxelSizeMm), insideBand));
         }

@@ -245,8 +245,7 @@ openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSize
 
 openvdb::FloatGrid::Ptr meshToLevelSet(const SurfaceMesh& mesh, double voxelSizeMm, const BandWidths& widths,
                                        MeshToLevelSetStats& stats, Progress& progress) {
-    requireLevelSetInput(mesh, voxelSizeMm, widths.halfWidthVoxels);
-    requireLevelSetInput(mesh, voxelSizeMm, widths.farHalfWidthVoxels);
+    requireLevelSetInput(mesh, voxelSizeMm, std::min(widths.halfWidthVoxels, widths.farHalfWidthVoxels));
     stats = MeshToLevelSetStats{};
     stats.inputTriangles = mesh.triangles.size();
     ProgressStage stage(progress, "levelset");
