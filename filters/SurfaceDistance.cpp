@@ -41,13 +41,24 @@ void forEachSamplePoint(const Vec3& a, const Vec3& u, const Vec3& v, int n, F&& 
 
 struct Corner {
     Vec3 p;
-    double d;             // distance to `to`, mm
-    std::int32_t closest; // nearest triangle of `to`
+    double d;             // distance to `to`, mm (in refineMax, possibly an upper bound: measureUnlessBelow)
+    std::int32_t closest; // nearest triangle of `to` (of that bound)
 };
 
 Corner measure(const TriangleBvh& to, const Vec3& p, std::int32_t hint) {
     const ClosestTriangle c = closestTriangle(to, p, hint);
     return {p, std::sqrt(c.squaredDistanceMm2), c.triangle};
+}
+
+/// p's distance and nearest triangle when the distance may exceed `bar`; else an upper bound of
+/// it, at most `bar`, from a walk across the triangles near `hint`. The branch and bound needs
+/// no more of a point that cannot raise its maximum (its bounds stay upper bounds), and the walk
+/// costs a few triangle distances where a search of the tree costs tens.
+Corner measureUnlessBelow(const TriangleBvh& to, const Vec3& p, std::int32_t hint, double bar) {
+    const ClosestTriangle near = nearbyTriangle(to, p, hint);
+    const double d = std::sqrt(near.squaredDistanceMm2);
+    if (d <= bar) return {p, d, near.triangle};
+    return measure(to, p, near.triangle);
 }
 
 /// The farthest any point of triangle (a, b, c) is from its nearest corner: the circumradius of an
@@ -94,7 +105,9 @@ double upperBound(const Corner* k, const TriangleBvh& to, double enough) {
 }
 
 /// Branch and bound over (a, b, c) given its measured corners; raises best (and *where) when a
-/// point beats it. Serial and in a fixed order, so the result depends only on the inputs.
+/// point beats it. A corner's d may be an upper bound at most `best` (measureUnlessBelow): best
+/// only grows, so such a point never raises it, and every bound made from it stays an upper bound.
+/// Serial and in a fixed order, so the result depends only on the inputs.
 void refineMax(const Corner& a, const Corner& b, const Corner& c, const TriangleBvh& to, double toleranceMm,
                double& best, Vec3* where) {
     struct Item {
@@ -118,14 +131,14 @@ void refineMax(const Corner& a, const Corner& b, const Corner& c, const Triangle
         const Corner* k = item.k;
         if (upperBound(k, to, best + toleranceMm) <= best + toleranceMm) continue;
         const Vec3 centre = (k[0].p + k[1].p + k[2].p) / 3.0;
-        const Corner m = measure(to, centre, k[0].closest);
+        const Corner m = measureUnlessBelow(to, centre, k[0].closest, best);
         raise(m);
         const double radius = std::sqrt(std::max({(k[0].p - centre).squaredNorm(), (k[1].p - centre).squaredNorm(),
                                                   (k[2].p - centre).squaredNorm()}));
         if (m.d + radius <= best + toleranceMm || item.depth >= kMaxRefineDepth) continue;
-        const Corner ab = measure(to, 0.5 * (k[0].p + k[1].p), k[0].closest);
-        const Corner bc = measure(to, 0.5 * (k[1].p + k[2].p), k[1].closest);
-        const Corner ca = measure(to, 0.5 * (k[2].p + k[0].p), k[2].closest);
+        const Corner ab = measureUnlessBelow(to, 0.5 * (k[0].p + k[1].p), k[0].closest, best);
+        const Corner bc = measureUnlessBelow(to, 0.5 * (k[1].p + k[2].p), k[1].closest, best);
+        const Corner ca = measureUnlessBelow(to, 0.5 * (k[2].p + k[0].p), k[2].closest, best);
         raise(ab);
         raise(bc);
         raise(ca);

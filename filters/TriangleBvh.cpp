@@ -100,6 +100,38 @@ inline double boxSquaredDistance(const TriangleBvh::Node& node, const Vec3& p) {
     return d2;
 }
 
+/// bvh.edgeNeighbour from the triangles' vertex indices: each vertex's slots, then per edge the
+/// lowest other slot around its first vertex that also holds its second.
+void linkEdgeNeighbours(const std::vector<Vec3>& vertices, const std::vector<Tri>& triangles, TriangleBvh& bvh) {
+    const std::size_t n = bvh.triangle.size();
+    std::vector<std::int32_t> first(vertices.size() + 1, 0), slots(3 * n);
+    for (const Tri& t : triangles)
+        for (std::int32_t v : t) ++first[static_cast<std::size_t>(v) + 1];
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    std::vector<std::int32_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t s = 0; s < n; ++s)  // slots ascending within each vertex's list
+        for (std::int32_t v : triangles[static_cast<std::size_t>(bvh.triangle[s])])
+            slots[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<std::int32_t>(s);
+    bvh.edgeNeighbour.assign(n, {-1, -1, -1});
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t s = r.begin(); s != r.end(); ++s) {
+            const Tri& t = triangles[static_cast<std::size_t>(bvh.triangle[s])];
+            for (std::size_t k = 0; k < 3; ++k) {
+                const std::int32_t a = t[k], b = t[(k + 1) % 3];
+                if (a == b) continue;
+                for (std::int32_t i = first[static_cast<std::size_t>(a)]; i < first[static_cast<std::size_t>(a) + 1]; ++i) {
+                    const std::int32_t o = slots[static_cast<std::size_t>(i)];
+                    const Tri& u = triangles[static_cast<std::size_t>(bvh.triangle[static_cast<std::size_t>(o)])];
+                    if (o != static_cast<std::int32_t>(s) && (u[0] == b || u[1] == b || u[2] == b)) {
+                        bvh.edgeNeighbour[s][k] = o;
+                        break;
+                    }
+                }
+            }
+        }
+    });
+}
+
 }  // namespace
 
 TriangleBvh buildTriangleBvh(const std::vector<Vec3>& vertices, const std::vector<Tri>& triangles) {
@@ -131,6 +163,7 @@ TriangleBvh buildTriangleBvh(const std::vector<Vec3>& vertices, const std::vecto
     });
     bvh.slotOf.resize(triangles.size());
     for (std::size_t i = 0; i < order.size(); ++i) bvh.slotOf[static_cast<std::size_t>(order[i])] = static_cast<std::int32_t>(i);
+    linkEdgeNeighbours(vertices, triangles, bvh);
     return bvh;
 }
 
@@ -173,6 +206,30 @@ ClosestTriangle closestTriangle(const TriangleBvh& bvh, const Vec3& p, std::int3
         }
     }
     return best;
+}
+
+ClosestTriangle nearbyTriangle(const TriangleBvh& bvh, const Vec3& p, std::int32_t fromTriangle, int maxSteps) {
+    if (bvh.empty() || fromTriangle < 0 || static_cast<std::size_t>(fromTriangle) >= bvh.slotOf.size()) return {};
+    const auto distance2 = [&](std::int32_t slot) {
+        const auto& c = bvh.corners[static_cast<std::size_t>(slot)];
+        return squaredDistanceToTriangle(p, c[0], c[1], c[2]);
+    };
+    std::int32_t slot = bvh.slotOf[static_cast<std::size_t>(fromTriangle)];
+    double d2 = distance2(slot);
+    for (int step = 0; step < maxSteps; ++step) {
+        std::int32_t next = -1;
+        for (std::int32_t o : bvh.edgeNeighbour[static_cast<std::size_t>(slot)]) {
+            if (o < 0) continue;
+            const double e2 = distance2(o);
+            if (e2 < d2) {
+                d2 = e2;
+                next = o;
+            }
+        }
+        if (next < 0) break;
+        slot = next;
+    }
+    return {d2, bvh.triangle[static_cast<std::size_t>(slot)]};
 }
 
 }  // namespace jawmesh

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -67,6 +68,39 @@ TEST(TriangleBvh, NearestTriangleEqualsBruteForce) {
     const ClosestTriangle pole = closestTriangle(bvh, s.vertices[0] + Vec3(0, 0, 1));
     EXPECT_EQ(pole.triangle, 0);
     EXPECT_TRUE(closestTriangle(buildTriangleBvh(SurfaceMesh{}), Vec3::Zero()).triangle == -1);
+}
+
+TEST(TriangleBvh, WalkToANearbyTriangleBoundsTheNearestAndReachesItOnASphere) {
+    const SurfaceMesh s = sphere(Vec3(1, 2, 3), 5.0, 40);
+    const TriangleBvh bvh = buildTriangleBvh(s);
+    // Every inner edge of the closed sphere has its neighbour, and neighbours share both vertices.
+    for (std::size_t slot = 0; slot < bvh.edgeNeighbour.size(); ++slot)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::int32_t o = bvh.edgeNeighbour[slot][k];
+            ASSERT_GE(o, 0);
+            const Tri& t = s.triangles[static_cast<std::size_t>(bvh.triangle[slot])];
+            const Tri& u = s.triangles[static_cast<std::size_t>(bvh.triangle[static_cast<std::size_t>(o)])];
+            for (std::int32_t v : {t[k], t[(k + 1) % 3]}) EXPECT_NE(std::find(u.begin(), u.end(), v), u.end());
+        }
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int reached = 0;
+    for (int k = 0; k < 300; ++k) {
+        Vec3 dir(u(rng), u(rng), u(rng));
+        if (dir.norm() < 0.1) continue;
+        const Vec3 p = Vec3(1, 2, 3) + (5.0 + 0.3 * u(rng)) * dir.normalized();
+        const ClosestTriangle exact = closestTriangle(bvh, p);
+        // From a triangle a few rings away: an upper bound always, the nearest on this convex surface.
+        const Vec3 q = Vec3(1, 2, 3) + 5.0 * (dir.normalized() + 0.15 * Vec3(u(rng), u(rng), u(rng))).normalized();
+        const ClosestTriangle walked = nearbyTriangle(bvh, p, closestTriangle(bvh, q).triangle, 64);
+        EXPECT_GE(walked.squaredDistanceMm2, exact.squaredDistanceMm2);
+        reached += walked.squaredDistanceMm2 == exact.squaredDistanceMm2;
+    }
+    EXPECT_GE(reached, 280);
+    // Without steps it is the start triangle's own distance; no start, no answer.
+    const ClosestTriangle stay = nearbyTriangle(bvh, Vec3(20, 0, 0), 7, 0);
+    EXPECT_EQ(stay.triangle, 7);
+    EXPECT_EQ(nearbyTriangle(bvh, Vec3::Zero(), -1).triangle, -1);
 }
 
 TEST(SurfaceDistance, OffsetSpheresGiveTheAnalyticDistances) {
