@@ -203,27 +203,9 @@ struct GroupBar {
     Vec3 at = Vec3::Zero();
 };
 
-/// Every corner of a grouped triangle measured once (a vertex is shared by about six triangles),
-/// each query hinted by the nearest triangle of a sample beside it. Unmeasured vertices keep d -1.
-std::vector<Corner> measureCorners(const SurfaceMesh& from, const DistanceSamples& samples,
-                                   const std::vector<int>& groupOfTriangle, const TriangleBvh& to) {
-    std::vector<Corner> corner(from.vertices.size(), Corner{Vec3::Zero(), -1.0, -1});
-    std::vector<std::int32_t> hint(from.vertices.size(), -1);
-    for (std::size_t t = 0; t < from.triangles.size(); ++t)
-        if (groupOfTriangle[t] >= 0)
-            for (std::int32_t v : from.triangles[t])
-                hint[static_cast<std::size_t>(v)] = samples.closestTriangle[static_cast<std::size_t>(samples.firstOfTriangle[t])];
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corner.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t v = r.begin(); v != r.end(); ++v)
-            if (hint[v] >= 0) corner[v] = measure(to, from.vertices[v], hint[v]);
-    });
-    return corner;
-}
-
-/// Each group's bar: its largest sample (the first in sample order) or, when larger, its
-/// farthest corner (the first in triangle order).
-std::vector<GroupBar> groupBars(const SurfaceMesh& from, const DistanceSamples& samples, const std::vector<int>& groupOfTriangle,
-                                const std::vector<Corner>& corner, std::size_t groupCount) {
+/// Each group's largest sample (the first in sample order) and where it is.
+std::vector<GroupBar> sampleBars(const SurfaceMesh& from, const DistanceSamples& samples,
+                                 const std::vector<int>& groupOfTriangle, std::size_t groupCount) {
     std::vector<GroupBar> bar(groupCount);
     std::vector<std::size_t> barSample(groupCount, 0);
     for (std::size_t t = 0; t < from.triangles.size(); ++t) {
@@ -248,6 +230,13 @@ std::vector<GroupBar> groupBars(const SurfaceMesh& from, const DistanceSamples& 
             if (index++ == i) bar[g].at = p;
         });
     }
+    return bar;
+}
+
+/// Each group's bar: its sample bar or, when larger, its farthest corner (the first in triangle
+/// order; a corner under the sample bar may hold only a bound, which never beats it).
+std::vector<GroupBar> groupBars(const SurfaceMesh& from, const std::vector<int>& groupOfTriangle,
+                                const std::vector<Corner>& corner, std::vector<GroupBar> bar) {
     for (std::size_t t = 0; t < from.triangles.size(); ++t) {
         const int g = groupOfTriangle[t];
         if (g < 0) continue;
@@ -256,6 +245,29 @@ std::vector<GroupBar> groupBars(const SurfaceMesh& from, const DistanceSamples& 
                 bar[static_cast<std::size_t>(g)] = {corner[static_cast<std::size_t>(v)].d, corner[static_cast<std::size_t>(v)].p};
     }
     return bar;
+}
+
+/// Every corner of a grouped triangle measured once (a vertex is shared by about six triangles),
+/// each query hinted by the nearest triangle of a sample beside it. A corner that cannot raise the
+/// bars of its triangles' groups (`sampleBar`) keeps an upper bound of its distance under them
+/// (measureUnlessBelow): the branch and bound needs no more. Unmeasured vertices keep d -1.
+std::vector<Corner> measureCorners(const SurfaceMesh& from, const DistanceSamples& samples,
+                                   const std::vector<int>& groupOfTriangle, const std::vector<GroupBar>& sampleBar,
+                                   const TriangleBvh& to) {
+    std::vector<Corner> corner(from.vertices.size(), Corner{Vec3::Zero(), -1.0, -1});
+    std::vector<std::int32_t> hint(from.vertices.size(), -1);
+    std::vector<double> bar(from.vertices.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t t = 0; t < from.triangles.size(); ++t)
+        if (const int g = groupOfTriangle[t]; g >= 0)
+            for (std::int32_t v : from.triangles[t]) {
+                hint[static_cast<std::size_t>(v)] = samples.closestTriangle[static_cast<std::size_t>(samples.firstOfTriangle[t])];
+                bar[static_cast<std::size_t>(v)] = std::min(bar[static_cast<std::size_t>(v)], sampleBar[static_cast<std::size_t>(g)].mm);
+            }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, corner.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t v = r.begin(); v != r.end(); ++v)
+            if (hint[v] >= 0) corner[v] = measureUnlessBelow(to, from.vertices[v], hint[v], bar[v]);
+    });
+    return corner;
 }
 
 }  // namespace
@@ -274,9 +286,10 @@ std::vector<DistanceSummary> summarizeDistances(const SurfaceMesh& from, const D
             weights[static_cast<std::size_t>(g)].push_back(samples.weightMm2[static_cast<std::size_t>(i)]);
         }
     }
-    const std::vector<Corner> corner = measureCorners(from, samples, groupOfTriangle, to);
+    const std::vector<GroupBar> sampleBar = sampleBars(from, samples, groupOfTriangle, out.size());
+    const std::vector<Corner> corner = measureCorners(from, samples, groupOfTriangle, sampleBar, to);
     // The bar a triangle must beat to be refined, and where the max is until one does.
-    const std::vector<GroupBar> bar = groupBars(from, samples, groupOfTriangle, corner, out.size());
+    const std::vector<GroupBar> bar = groupBars(from, groupOfTriangle, corner, sampleBar);
 
     // Most triangles are settled by their own samples: every point of a sub-triangle is within its
     // centroid-to-corner radius of the sample at that centroid (distance is 1-Lipschitz), so a
