@@ -15,6 +15,9 @@
 #include "io/Error.h"
 #include "io/ResourceUsage.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -140,16 +143,19 @@ InputMeasures measureInput(const InterfaceComplex& input, const SimplifyOptions&
     return {std::move(nearTeeth), std::move(plateMm), InputSurface(input)};
 }
 
-/// The adaptive extraction's carried vertices start on their triangles, at their distance.
+/// The adaptive extraction's carried vertices start on their triangles, at their distance (each
+/// carried by one triangle, so the triangles are placed in parallel).
 void placeCarriedVertices(const InterfaceComplex& input, State& st) {
     const auto& P = input.surface.vertices;
-    for (std::size_t t = 0; t < input.carried.size(); ++t) {
-        st.pts[t] = input.carried[t];
-        const Tri& f = st.tris[t];
-        for (std::int32_t p : st.pts[t])
-            st.err[std::size_t(p)] = float(std::sqrt(squaredDistanceToTriangle(P[std::size_t(p)], P[std::size_t(f[0])],
-                                                                               P[std::size_t(f[1])], P[std::size_t(f[2])])));
-    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, input.carried.size(), 4096), [&](const auto& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            st.pts[t] = input.carried[t];
+            const Tri& f = st.tris[t];
+            for (std::int32_t p : st.pts[t])
+                st.err[std::size_t(p)] = float(std::sqrt(squaredDistanceToTriangle(
+                    P[std::size_t(p)], P[std::size_t(f[0])], P[std::size_t(f[1])], P[std::size_t(f[2])])));
+        }
+    });
 }
 
 /// Every corner's quadric: the planes of its triangles, weighted by their areas.
@@ -260,10 +266,13 @@ InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const Simplif
         throw Error("simplification: the output has " + std::to_string(check.pairs.size()) +
                     " intersecting triangle pairs (the input surface must be intersection-free)");
     const std::size_t cornerSplits = splitThreeTriangleCorners(out);  // forced slivers (SplitCorners.h)
-    out.seeds = seedsInsideShells(out);  // grid seeds may have left a thin region (ShellSeeds.h)
     SimplifyStats local;
     SimplifyStats& s = stats ? *stats : local;
-    s = measureOutput(input, out, st, measures, options.minWedgeDeg);
+    // Both only read the output (the statistics are serial, the seeds' rays mostly parallel).
+    std::vector<RegionSeed> seeds;
+    tbb::parallel_invoke([&] { seeds = seedsInsideShells(out); },  // grid seeds may have left a thin region (ShellSeeds.h)
+                         [&] { s = measureOutput(input, out, st, measures, options.minWedgeDeg); });
+    out.seeds = std::move(seeds);
     s.exhaustiveRerun = rerun;
     s.cornerSplits = cornerSplits;
     s.collapses = collapses;
