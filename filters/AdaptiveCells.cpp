@@ -11,6 +11,7 @@
 #include "io/VertexTriangles.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -499,13 +500,18 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
     mesh.blockAtVertex.assign(cells.size(), -1);
     AdaptiveSurface out;
     const double voxelMm = labels.voxelSize()[0];
-    const auto near = top > 0 ? blocksNearTeeth(quads, cells, top, voxelMm * double(1 << top), options.boneNearTeethMm)
-                              : openvdb::BoolGrid::create(false);
+    openvdb::BoolGrid::Ptr near = openvdb::BoolGrid::create(false);
     const int farTop = top > 0 ? std::min(top + options.farBoneExtraLevels, 5) : 0;
     if (top > 0) {
-        mesh.quadsOfCell = quadsOfCells(quads, cells.size());
+        // both serial and independent
+        tbb::parallel_invoke(
+            [&] { near = blocksNearTeeth(quads, cells, top, voxelMm * double(1 << top), options.boneNearTeethMm); },
+            [&] { mesh.quadsOfCell = quadsOfCells(quads, cells.size()); });
         mesh.blocks = initialBlocks(labels, cells, top, farTop, merge, *near);
-        for (std::size_t b = 0; b < mesh.blocks.size(); ++b) mesh.assign(b);
+        // the blocks' members are disjoint, so are their writes
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.blocks.size(), 256), [&](const auto& r) {
+            for (std::size_t b = r.begin(); b != r.end(); ++b) mesh.assign(b);
+        });
         findRimQuads(mesh, 0);
     }
     progress.checkCancelled();

@@ -131,10 +131,14 @@ void updateLabelEdges(std::vector<LabelEdge>& edges, const openvdb::Int32Grid& l
         }
     std::sort(recheck.begin(), recheck.end(), before);
     recheck.erase(std::unique(recheck.begin(), recheck.end(), same), recheck.end());
-    // in place: the edges are a few hundred megabytes on a jaw
-    edges.erase(std::remove_if(edges.begin(), edges.end(),
-                               [&](const LabelEdge& e) { return std::binary_search(recheck.begin(), recheck.end(), e, before); }),
-                edges.end());
+    // in place (the edges are a few hundred megabytes on a jaw), by one merge of the two sorted lists
+    std::size_t kept = 0;
+    auto r = recheck.begin();
+    for (const LabelEdge& e : edges) {
+        while (r != recheck.end() && before(*r, e)) ++r;
+        if (r == recheck.end() || !same(*r, e)) edges[kept++] = e;
+    }
+    edges.resize(kept);
     auto acc = labels.getConstAccessor();
     std::vector<LabelEdge> changes;
     for (const LabelEdge& e : recheck) {
@@ -143,7 +147,7 @@ void updateLabelEdges(std::vector<LabelEdge>& edges, const openvdb::Int32Grid& l
         if (acc.getValue(e.voxel) != acc.getValue(w)) changes.push_back(e);
     }
     // merged from the back, so no copy of the edges is made
-    std::size_t kept = edges.size(), added = changes.size();
+    std::size_t added = changes.size();
     edges.resize(kept + added);
     for (std::size_t out = kept + added; added > 0; --out) {
         if (kept > 0 && before(changes[added - 1], edges[kept - 1])) edges[out - 1] = edges[--kept];

@@ -32,7 +32,7 @@ std::vector<LabelEdge> findLabelEdges(const openvdb::Int32Grid& labels,
 /// `edges` (findLabelEdges of `labels` before the voxels `changed` were relabelled) made the label
 /// edges of `labels` now: the six edges at each of those voxels looked at again, the rest kept.
 /// What a new search finds, since a relabelled voxel sits in a leaf of `labels` (where the search
-/// looks), and far cheaper for the few voxels a repair changes. Cost: O(edges log changed).
+/// looks), and far cheaper for the few voxels a repair changes. Cost: O(edges + changed log changed).
 void updateLabelEdges(std::vector<LabelEdge>& edges, const openvdb::Int32Grid& labels,
                       const std::vector<openvdb::Coord>& changed);
 
