@@ -99,15 +99,18 @@ struct Mesh {
         }
     }
 
-    /// Squared distance from x to the fine triangles of the quads around dual cell c.
-    double squaredDistanceToFineAround(std::int32_t c, const Vec3& x) const {
+    /// Squared distance from x to the fine triangles of the quads around dual cell c, or the
+    /// first of them at most `enough` (the callers only ask whether it is over that).
+    double squaredDistanceToFineAround(std::int32_t c, const Vec3& x, double enough) const {
         double best = std::numeric_limits<double>::infinity();
         for (const std::int32_t* q = quadsOfCell.begin(c); q != quadsOfCell.end(c); ++q) {
             Tri t[2];
             const int n = quadTriangles(quads[std::size_t(*q)].cells, P, t);
-            for (int i = 0; i < n; ++i)
+            for (int i = 0; i < n; ++i) {
                 best = std::min(best, squaredDistanceToTriangle(x, P[std::size_t(t[i][0])], P[std::size_t(t[i][1])],
                                                                 P[std::size_t(t[i][2])]));
+                if (best <= enough) return best;
+            }
         }
         return best;
     }
@@ -254,7 +257,8 @@ bool errorsWithin(Block& b, const Mesh& mesh, Scratch& s, double carriedMm, doub
                         nearest = *c;
                     }
                 }
-            if (d2 > worst2) d2 = std::min(d2, mesh.squaredDistanceToFineAround(nearest, x));
+            // a fine triangle within worst2 settles it as a fine vertex does
+            if (d2 > worst2) d2 = std::min(d2, mesh.squaredDistanceToFineAround(nearest, x, worst2));
             worst2 = std::max(worst2, d2);
             if (worst2 > sampleMm * sampleMm) return false;
         }
