@@ -143,6 +143,7 @@ struct Scratch {
     std::vector<std::array<Label, 2>> fanSides, edgeSides;
     std::vector<EdgeFanTriangle> wedge;
     std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+    std::vector<std::pair<std::int32_t, std::int32_t>> sampledEdges;  ///< fan edges whose midpoint is measured
     std::vector<std::pair<Vec3, double>> spheres;  ///< per fan triangle: centre and radius, mm
 };
 
@@ -241,10 +242,19 @@ bool errorsWithin(Block& b, const Mesh& mesh, Scratch& s, double carriedMm, doub
     }
     b.carriedErrorMm = float(std::sqrt(worst2));
     worst2 = 0;
+    s.sampledEdges.clear();
     for (const Tri& t : s.fan) {
         const Vec3 a = corner(t, 0), c1 = corner(t, 1), c2 = corner(t, 2);
         const Vec3 samples[4] = {(a + c1 + c2) / 3.0, 0.5 * (a + c1), 0.5 * (c1 + c2), 0.5 * (c2 + a)};
-        for (const Vec3& x : samples) {
+        for (int k = 0; k < 4; ++k) {
+            const Vec3& x = samples[k];
+            // A spoke's midpoint is shared by two fan triangles: measured once, from the clusters
+            // of the first one's corners (a distance to part of the fine surface, as any is).
+            if (k > 0) {
+                const std::pair<std::int32_t, std::int32_t> e = std::minmax(t[std::size_t(k - 1)], t[std::size_t(k % 3)]);
+                if (std::find(s.sampledEdges.begin(), s.sampledEdges.end(), e) != s.sampledEdges.end()) continue;
+                s.sampledEdges.push_back(e);
+            }
             // Only a sample farther than every one so far raises the error: a fine vertex within
             // that distance ends its search.
             double d2 = std::numeric_limits<double>::infinity();
