@@ -6,6 +6,7 @@
 
 #include "filters/CoarseBlocks.h"
 #include "filters/DualQuads.h"
+#include "io/SurfaceMesh.h"
 
 #include <openvdb/openvdb.h>
 
@@ -27,9 +28,13 @@ struct Block {
     // set by the certification (AdaptiveCells.cpp):
     std::vector<std::int32_t> carrier;  ///< per member: the triangle nearest it
     std::vector<std::int32_t> rimQuads; ///< quads with some, not all, cells among the members, sorted
+    std::vector<BBox> memberBoxes;      ///< per kMembersPerBox consecutive members: the box of their vertices
     float carriedErrorMm = 0;
     float sampleErrorMm = 0;
 };
+
+/// Members per box of Block::memberBoxes.
+constexpr std::size_t kMembersPerBox = 16;
 
 /// The block of `level` that holds cell c (a block of level 0).
 Coord blockOf(const Coord& c, int level);

@@ -29,6 +29,7 @@ using adaptive::blockOf;
 using adaptive::blocksNearTeeth;
 using adaptive::chooseInChildren;
 using adaptive::initialBlocks;
+using adaptive::kMembersPerBox;
 using adaptive::MergeRule;
 using adaptive::windowOf;
 
@@ -52,15 +53,26 @@ struct Mesh {
     std::vector<Block> blocks;
     std::vector<std::int32_t> vertexOf, blockOfCell, blockAtVertex;
 
-    /// The cells that vertex v stands for: its block's members, or itself.
-    const std::int32_t* clusterBegin(std::int32_t v) const {
+    /// Lowers d2 (and sets nearest) to the nearest vertex of the cells that vertex v stands for
+    /// (its block's members in order, or itself) nearer than d2; stops once d2 <= stop2. The
+    /// first nearest in member order, as a plain scan finds it: a box of members at d2 or
+    /// farther holds none nearer.
+    void nearestInCluster(std::int32_t v, const Vec3& x, double stop2, double& d2, std::int32_t& nearest) const {
+        const auto visit = [&](std::int32_t c) {
+            const double e = (P[std::size_t(c)] - x).squaredNorm();
+            if (e < d2) {
+                d2 = e;
+                nearest = c;
+            }
+        };
         const std::int32_t b = blockAtVertex[std::size_t(v)];
-        return b >= 0 ? blocks[std::size_t(b)].members.data() : &vertexOf[std::size_t(v)];
-    }
-    const std::int32_t* clusterEnd(std::int32_t v) const {
-        const std::int32_t b = blockAtVertex[std::size_t(v)];
-        return b >= 0 ? blocks[std::size_t(b)].members.data() + blocks[std::size_t(b)].members.size()
-                      : &vertexOf[std::size_t(v)] + 1;
+        if (b < 0) return visit(v);
+        const Block& k = blocks[std::size_t(b)];
+        for (std::size_t j = 0; j < k.memberBoxes.size() && d2 > stop2; ++j) {
+            if (k.memberBoxes[j].squaredDistance(x) >= d2) continue;
+            const std::size_t end = std::min(k.members.size(), (j + 1) * kMembersPerBox);
+            for (std::size_t i = j * kMembersPerBox; i < end && d2 > stop2; ++i) visit(k.members[i]);
+        }
     }
 
     /// The quads that make the triangles at vertex v, sorted: its block's rim quads, or a fine
@@ -129,6 +141,7 @@ struct Mesh {
     void release(std::size_t b) {
         Block& k = blocks[b];
         std::vector<std::int32_t>().swap(k.rimQuads);
+        std::vector<BBox>().swap(k.memberBoxes);
         for (std::int32_t c : k.members) {
             blockOfCell[std::size_t(c)] = -1;
             vertexOf[std::size_t(c)] = c;
@@ -259,14 +272,7 @@ bool errorsWithin(Block& b, const Mesh& mesh, Scratch& s, double carriedMm, doub
             // that distance ends its search.
             double d2 = std::numeric_limits<double>::infinity();
             std::int32_t nearest = -1;
-            for (std::int32_t v : t)
-                for (const std::int32_t* c = mesh.clusterBegin(v); c != mesh.clusterEnd(v) && d2 > worst2; ++c) {
-                    const double e = (P[std::size_t(*c)] - x).squaredNorm();
-                    if (e < d2) {
-                        d2 = e;
-                        nearest = *c;
-                    }
-                }
+            for (std::int32_t v : t) mesh.nearestInCluster(v, x, worst2, d2, nearest);
             // a fine triangle within worst2 settles it as a fine vertex does
             if (d2 > worst2) d2 = std::min(d2, mesh.squaredDistanceToFineAround(nearest, x, worst2));
             worst2 = std::max(worst2, d2);
@@ -371,6 +377,23 @@ void findRimQuads(Mesh& mesh, std::size_t first) {
     });
 }
 
+/// The member boxes of blocks [first, end) (Block::memberBoxes), in parallel; fixed while the
+/// block lives. They let a sample's nearest member skip most of a block (the certification's
+/// hottest loop scanned every member of three clusters for each sample).
+void boxMembers(Mesh& mesh, std::size_t first) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(first, mesh.blocks.size(), 64), [&](const auto& r) {
+        for (std::size_t b = r.begin(); b != r.end(); ++b) {
+            Block& k = mesh.blocks[b];
+            k.memberBoxes.clear();
+            for (std::size_t i = 0; i < k.members.size(); i += kMembersPerBox) {
+                BBox box;
+                for (std::size_t j = i; j < std::min(k.members.size(), i + kMembersPerBox); ++j) box.extend(mesh.P[std::size_t(k.members[j])]);
+                k.memberBoxes.push_back(box);
+            }
+        }
+    });
+}
+
 }  // namespace
 
 nlohmann::json toJson(const AdaptiveStats& s) {
@@ -448,6 +471,7 @@ void splitBlocks(Mesh& mesh, const std::vector<std::size_t>& split, bool toFine,
         dirty.resize(mesh.blocks.size(), 1);  // new children are checked
     }
     findRimQuads(mesh, firstNew);
+    boxMembers(mesh, firstNew);
     for (std::size_t b : split) dirty[b] = 0;
 }
 
@@ -527,6 +551,7 @@ AdaptiveSurface adaptiveSurface(const openvdb::Int32Grid& labels, const std::vec
             for (std::size_t b = r.begin(); b != r.end(); ++b) mesh.assign(b);
         });
         findRimQuads(mesh, 0);
+        boxMembers(mesh, 0);
     }
     progress.checkCancelled();
 

@@ -38,6 +38,8 @@ struct BBox {
     Vec3 size() const { return empty() ? Vec3::Zero() : Vec3(max - min); }
     /// True when the two boxes share a point (closed boxes).
     bool overlaps(const BBox& b) const { return (min.array() <= b.max.array()).all() && (b.min.array() <= max.array()).all(); }
+    /// Squared distance from p to the closed box (0 inside), mm^2.
+    double squaredDistance(const Vec3& p) const { return (min - p).cwiseMax(p - max).cwiseMax(0.0).squaredNorm(); }
 };
 
 /// Bounding box of the vertices referenced by at least one triangle (unused vertices ignored).
