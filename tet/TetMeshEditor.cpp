@@ -108,6 +108,7 @@ void TetMeshEditor::add(const Tet& e, Label label) {
     mesh_.labels.push_back(label);
     alive_.push_back(1);
     for (auto v : e) star_[std::size_t(v)].push_back(t);
+    touched_.push_back(t);
 }
 
 void TetMeshEditor::kill(std::int32_t t) {
@@ -126,6 +127,7 @@ void TetMeshEditor::replace(const std::vector<std::int32_t>& old, const std::vec
 
 void TetMeshEditor::move(std::int32_t v, const Vec3& p) {
     for (auto t : star(v)) recordChange(t);
+    touched_.insert(touched_.end(), star(v).begin(), star(v).end());
     for (Checkpoint& c : checkpoints_) c.movedNodes.emplace_back(v, node(v));
     mesh_.nodes[std::size_t(v)] = p;
 }
@@ -173,7 +175,11 @@ void TetMeshEditor::rollback() {
             alive_[std::size_t(it->first)] = 1;
             for (auto v : mesh_.tets[std::size_t(it->first)]) star_[std::size_t(v)].push_back(it->first);
         }
-    for (auto it = c.movedNodes.rbegin(); it != c.movedNodes.rend(); ++it) mesh_.nodes[std::size_t(it->first)] = it->second;
+    for (auto it = c.movedNodes.rbegin(); it != c.movedNodes.rend(); ++it) {
+        mesh_.nodes[std::size_t(it->first)] = it->second;
+        if (std::size_t(it->first) < c.firstNewNode)
+            touched_.insert(touched_.end(), star_[std::size_t(it->first)].begin(), star_[std::size_t(it->first)].end());
+    }
     mesh_.nodes.resize(c.firstNewNode);
     star_.resize(c.firstNewNode);
     fixed_.resize(c.firstNewNode);

@@ -89,6 +89,10 @@ public:
     /// their last tets) are dropped, the others keep their order. The editor is done.
     void finish();
 
+    /// The tets added, or with a node moved (rollbacks included), since takeTouched was last
+    /// called, repeats and tets gone since included: only these can have a new score.
+    std::vector<std::int32_t> takeTouched() { return std::exchange(touched_, {}); }
+
 private:
     /// For every open checkpoint: remembers the score of a tet that existed before it, the first
     /// time it changes.
@@ -98,6 +102,7 @@ private:
     std::vector<char> alive_, fixed_;
     std::vector<std::vector<std::int32_t>> star_;
     std::vector<Checkpoint> checkpoints_;  ///< open ones, innermost last
+    std::vector<std::int32_t> touched_;    ///< takeTouched
 };
 
 }  // namespace jawmesh
