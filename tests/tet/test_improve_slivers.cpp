@@ -7,6 +7,7 @@
 #include "tet/ElementQuality.h"
 #include "tet/ImproveSlivers.h"
 #include "tet/TetFaceAdjacency.h"
+#include "tet/TetMeshEditor.h"
 #include "tet/Tetrahedralize.h"
 #include "tet/ValidateTetMesh.h"
 
@@ -372,4 +373,36 @@ TEST(ImproveSlivers, LastResortPushesAnOuterNodeOnlyWhereTheOuterSurfaceStaysFre
     EXPECT_TRUE(findSelfIntersections(outerSurface(roofed)).pairs.empty());
     EXPECT_LT(roofed.nodes[3].z(), 0.003);
     EXPECT_TRUE(validateTetMesh(roofed, {}).valid());
+}
+
+// The improver rescores only what the editor reports touched between its passes: every tet whose
+// score may differ (moved, moved back by a rollback, re-added under a new index) must be reported.
+TEST(TetMeshEditor, ReportsEveryTetWhoseScoreMayHaveChanged) {
+    TetMesh m = test::gridTetMesh(3, 3, 3, 1.0, [](const Vec3&) { return Label(1); });
+    TetMeshEditor editor(m);
+    std::vector<double> before(editor.tetCount());
+    for (std::size_t t = 0; t < before.size(); ++t) before[t] = editor.score(std::int32_t(t));
+    EXPECT_TRUE(editor.takeTouched().empty());
+    const std::int32_t v = 21;  // node (1, 1, 1): inside, free to move
+    ASSERT_FALSE(editor.fixed(v));
+    editor.checkpoint();
+    editor.move(v, editor.node(v) + Vec3(0.1, 0.05, 0.0));
+    editor.rollback();  // back where it was
+    const std::vector<std::int32_t> afterRollback = editor.takeTouched();
+    for (std::int32_t t : editor.star(v))
+        EXPECT_NE(std::find(afterRollback.begin(), afterRollback.end(), t), afterRollback.end());
+    editor.move(v, editor.node(v) + Vec3(-0.1, 0.1, 0.05));
+    const std::int32_t t0 = editor.star(v).front();
+    editor.replace({t0}, {editor.tet(t0)}, editor.label(t0));  // the same tet under a new index
+    std::vector<std::int32_t> touched = editor.takeTouched();
+    std::sort(touched.begin(), touched.end());
+    std::size_t changed = 0;
+    for (std::size_t t = 0; t < editor.tetCount(); ++t) {
+        if (!editor.alive(std::int32_t(t))) continue;
+        if (t < before.size() && editor.score(std::int32_t(t)) == before[t]) continue;
+        ++changed;
+        EXPECT_TRUE(std::binary_search(touched.begin(), touched.end(), std::int32_t(t))) << "tet " << t;
+    }
+    EXPECT_GE(changed, editor.star(v).size());  // the moved node's whole star, the re-added tet in it
+    EXPECT_TRUE(editor.takeTouched().empty());
 }
