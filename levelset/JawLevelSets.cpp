@@ -15,13 +15,13 @@ namespace {
 
 /// The bone's band widths: wide within kBoneWideBandMarginMm of each tooth's bounding box.
 BandWidths boneBandWidths(const JawSurfaces& surfaces, double voxelMm, double boneBandVoxels, double boneFarBandVoxels) {
-    BandWidths widths{boneBandVoxels, std::min(boneFarBandVoxels, boneBandVoxels), {}};
+    BandWidths widths{boneBandVoxels, boneFarBandVoxels, {}};  // bandDistance caps the far one at the wide one
+    const auto index = [&](double mm, bool up) {
+        return int(up ? std::ceil((mm + kBoneWideBandMarginMm) / voxelMm) : std::floor((mm - kBoneWideBandMarginMm) / voxelMm));
+    };
     for (const auto& [unn, mesh] : surfaces.teeth) {
         if (mesh.triangles.empty()) continue;
         const BBox box = boundingBox(mesh);
-        const auto index = [&](double mm, bool up) {
-            return int(up ? std::ceil((mm + kBoneWideBandMarginMm) / voxelMm) : std::floor((mm - kBoneWideBandMarginMm) / voxelMm));
-        };
         widths.wideBoxes.emplace_back(openvdb::Coord(index(box.min.x(), false), index(box.min.y(), false), index(box.min.z(), false)),
                                       openvdb::Coord(index(box.max.x(), true), index(box.max.y(), true), index(box.max.z(), true)));
     }

@@ -47,9 +47,9 @@ struct Improver {
     /// Lookahead trials made so far, and where they stop (deterministic: a count, not a clock).
     std::size_t trialsMade = 0;
     std::size_t trialLimit = std::numeric_limits<std::size_t>::max();
-    /// Every tet's score as badTets last saw it (stale only for tets the editor reports touched).
+    /// Every tet's score as badTets last saw it (stale only for tets the editor reports touched);
+    /// empty before its first call.
     std::vector<double> scores{};
-    bool scored = false;
 };
 
 /// The bad tets, worst first (ties by index).
@@ -59,11 +59,11 @@ std::vector<std::int32_t> badTets(Improver& imp) {
     // changes a few thousand of the 600 k; scoring them all was a sixth of the improver).
     std::vector<double>& scores = imp.scores;
     std::vector<std::int32_t> touched = mesh.takeTouched();
+    const bool first = scores.empty();
     scores.resize(mesh.tetCount(), kInvalidScore);
-    if (!imp.scored) {
+    if (first) {
         touched.resize(mesh.tetCount());
         std::iota(touched.begin(), touched.end(), 0);
-        imp.scored = true;
     } else {
         std::sort(touched.begin(), touched.end());
         touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
