@@ -3,15 +3,28 @@
 
 #include "io/Error.h"
 #include "levelset/InsideOverlap.h"
+#include "io/ParallelInOrder.h"
 #include "levelset/MeshToLevelSet.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace jawmesh {
 
 namespace {
+
+/// What a level set made beside others reports: only whether to stop.
+class CancelOnly : public Progress {
+public:
+    explicit CancelOnly(const Progress& p) : p_(p) {}
+    bool cancelled() const override { return p_.cancelled(); }
+
+private:
+    const Progress& p_;
+};
 
 /// The bone's band widths: wide within kBoneWideBandMarginMm of each tooth's bounding box.
 BandWidths boneBandWidths(const JawSurfaces& surfaces, double voxelMm, double boneBandVoxels, double boneFarBandVoxels) {
@@ -32,35 +45,57 @@ BandWidths boneBandWidths(const JawSurfaces& surfaces, double voxelMm, double bo
 
 JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, double voxelMm, double boneBandVoxels,
                           double boneFarBandVoxels, double toothBandVoxels, Progress& progress) {
-    auto levelSet = [&](const SurfaceMesh& mesh, const BandWidths& widths, Label label, const std::string& source) {
-        try {
-            MeshToLevelSetStats stats;
-            openvdb::FloatGrid::Ptr grid = meshToLevelSet(mesh, voxelMm, widths, stats, progress);
-            grid->setName(labelName(label));
-            return grid;
-        } catch (const Error& e) {
-            throw Error(source, e.reason());
-        }
+    // The bone and the teeth at once: each is parallel inside, but their serial steps (orientation,
+    // sorts) left a core idle in turn. Each grid depends on its surface alone, so the threads
+    // change nothing; the stage's bar counts triangles done (the inner stages would interleave).
+    struct Job {
+        const SurfaceMesh* mesh;
+        BandWidths widths;
+        Label label;
+        std::string source;
     };
-    JawLevelSets sets;
-    sets.bone = levelSet(surfaces.bone, boneBandWidths(surfaces, voxelMm, boneBandVoxels, boneFarBandVoxels),
-                         boneLabel(surfaces.jaw), boneSource(jawCase));
+    std::vector<Job> jobs{{&surfaces.bone, boneBandWidths(surfaces, voxelMm, boneBandVoxels, boneFarBandVoxels),
+                           boneLabel(surfaces.jaw), boneSource(jawCase)}};
     const double toothBand = std::max(boneBandVoxels, toothBandVoxels);
     for (const auto& [unn, mesh] : surfaces.teeth)
-        sets.teeth[unn] = levelSet(mesh, BandWidths{toothBand, toothBand, {}}, toothLabel(unn), toothSource(jawCase, unn));
+        jobs.push_back({&mesh, BandWidths{toothBand, toothBand, {}}, toothLabel(unn), toothSource(jawCase, unn)});
+    std::size_t allTriangles = 0;
+    for (const Job& job : jobs) allTriangles += job.mesh->triangles.size();
+    std::vector<openvdb::FloatGrid::Ptr> grids(jobs.size());
+    ProgressStage stage(progress, "level sets");
+    CancelOnly quiet(progress);
+    std::atomic<std::size_t> trianglesDone{0};
+    parallelForFirstErrorInOrder(jobs.size(), [&](std::size_t j) {
+        const Job& job = jobs[j];
+        try {
+            MeshToLevelSetStats stats;
+            grids[j] = meshToLevelSet(*job.mesh, voxelMm, job.widths, stats, quiet);
+            grids[j]->setName(labelName(job.label));
+        } catch (const Error& e) {
+            throw Error(job.source, e.reason());
+        }
+        const std::size_t done = trianglesDone += job.mesh->triangles.size();
+        stage.update(double(done) / double(std::max<std::size_t>(allTriangles, 1)));
+    });
+    JawLevelSets sets;
+    sets.bone = grids[0];
+    std::size_t j = 1;
+    for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = grids[j++];
     // Teeth in contact overlap a little and the carving splits them; a large shared volume is a
     // segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.
+    std::vector<std::pair<int, int>> pairs;  // (UNN, UNN), in the order of the teeth
     for (auto a = sets.teeth.begin(); a != sets.teeth.end(); ++a)
-        for (auto b = std::next(a); b != sets.teeth.end(); ++b) {
-            progress.checkCancelled();
-            const double shared = insideOverlapFraction(*a->second, *b->second);
-            if (shared > kHeavyToothOverlapFraction)
-                throw Error(toothSource(jawCase, b->first),
-                            "overlaps " + toothSource(jawCase, a->first) + " by " +
-                                std::to_string(static_cast<int>(shared * 100 + 0.5)) +
-                                "% of the smaller tooth's volume: the same tooth exported twice, or two teeth "
-                                "segmented into each other? Fix the segmentation.");
-        }
+        for (auto b = std::next(a); b != sets.teeth.end(); ++b) pairs.emplace_back(a->first, b->first);
+    parallelForFirstErrorInOrder(pairs.size(), [&](std::size_t i) {
+        progress.checkCancelled();
+        const auto [a, b] = pairs[i];
+        const double shared = insideOverlapFraction(*sets.teeth.at(a), *sets.teeth.at(b));
+        if (shared > kHeavyToothOverlapFraction)
+            throw Error(toothSource(jawCase, b), "overlaps " + toothSource(jawCase, a) + " by " +
+                                                     std::to_string(static_cast<int>(shared * 100 + 0.5)) +
+                                                     "% of the smaller tooth's volume: the same tooth exported twice, or two "
+                                                     "teeth segmented into each other? Fix the segmentation.");
+    });
     return sets;
 }
 
