@@ -32,6 +32,17 @@ inline Progress& noProgress() {
     return none;
 }
 
+/// What a step running beside others reports: only whether to stop (their stages and fractions
+/// would interleave on one bar; the caller reports the steps done).
+class CancelOnlyProgress : public Progress {
+public:
+    explicit CancelOnlyProgress(const Progress& p) : p_(p) {}
+    bool cancelled() const override { return p_.cancelled(); }
+
+private:
+    const Progress& p_;
+};
+
 /// begin() on construction, end() on destruction, so early returns and throws stay balanced.
 class ProgressStage {
 public:

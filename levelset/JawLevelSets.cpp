@@ -16,16 +16,6 @@ namespace jawmesh {
 
 namespace {
 
-/// What a level set made beside others reports: only whether to stop.
-class CancelOnly : public Progress {
-public:
-    explicit CancelOnly(const Progress& p) : p_(p) {}
-    bool cancelled() const override { return p_.cancelled(); }
-
-private:
-    const Progress& p_;
-};
-
 /// The bone's band widths: wide within kBoneWideBandMarginMm of each tooth's bounding box.
 BandWidths boneBandWidths(const JawSurfaces& surfaces, double voxelMm, double boneBandVoxels, double boneFarBandVoxels) {
     BandWidths widths{boneBandVoxels, boneFarBandVoxels, {}};  // bandDistance caps the far one at the wide one
@@ -63,7 +53,7 @@ JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, d
     for (const Job& job : jobs) allTriangles += job.mesh->triangles.size();
     std::vector<openvdb::FloatGrid::Ptr> grids(jobs.size());
     ProgressStage stage(progress, "level sets");
-    CancelOnly quiet(progress);
+    CancelOnlyProgress quiet(progress);
     std::atomic<std::size_t> trianglesDone{0};
     parallelForFirstErrorInOrder(jobs.size(), [&](std::size_t j) {
         const Job& job = jobs[j];

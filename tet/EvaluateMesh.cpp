@@ -6,6 +6,7 @@
 #include "filters/WeightedDistribution.h"
 #include "io/Angles.h"
 #include "io/Error.h"
+#include "io/ParallelInOrder.h"
 #include "io/ResourceUsage.h"
 #include "tet/ElementQuality.h"
 #include "tet/RegionSurfaces.h"
@@ -14,6 +15,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -390,29 +392,49 @@ Json pdlThicknessReport(const std::map<Label, RegionBoundary>& boundaries, const
     return pdl;
 }
 
+/// One region's two-sided distances to its input surface (a tooth's crown, root and cervical band;
+/// the bone's outer surface and socket); null when it has no input surface to compare with.
+Json domainDistances(const JawSurfaces& input, Label label, const RegionBoundary& boundary, const EvalOptions& o,
+                     Progress& progress) {
+    const LabelKind kind = labelKind(label);
+    if (kind == LabelKind::Tooth) {
+        const auto in = input.teeth.find(labelUnn(label));
+        if (in == input.teeth.end() || in->second.triangles.empty()) return nullptr;
+        Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "tooth"}};
+        d["parts"] = twoSidedDistances(boundary.surface, toothParts(boundary, o.cervicalBandMm), in->second,
+                                       {"crown", "root", "cervical"}, o, progress);
+        return d;
+    }
+    if (kind == LabelKind::Bone && !input.bone.triangles.empty()) {
+        std::vector<int> part(boundary.otherSide.size());
+        for (std::size_t t = 0; t < part.size(); ++t) part[t] = boundary.otherSide[t] == kOutsideLabel ? 0 : 1;
+        Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "bone"}};
+        d["parts"] = twoSidedDistances(boundary.surface, part, input.bone, {"outer", "socket"}, o, progress);
+        return d;
+    }
+    return nullptr;
+}
+
 /// Distances from the mesh's region surfaces to the input surfaces, per tooth (crown, root) and for the
 /// bone (outer, socket), with their summary (the "distance" entry).
 Json distanceReport(const JawSurfaces& input, const std::map<Label, RegionBoundary>& boundaries, const EvalOptions& o,
                     Progress& progress) {
-    Json domains = Json::array();
-    for (const auto& [label, boundary] : boundaries) {
+    // The domains at once (each is parallel inside, but its trees are built serially), in the
+    // order of their labels in the report; each depends on its own surfaces alone.
+    std::vector<std::pair<Label, const RegionBoundary*>> regions;
+    for (const auto& [label, boundary] : boundaries) regions.emplace_back(label, &boundary);
+    std::vector<Json> measured(regions.size());
+    CancelOnlyProgress quiet(progress);
+    std::atomic<std::size_t> done{0};
+    parallelForFirstErrorInOrder(regions.size(), [&](std::size_t i) {
         progress.checkCancelled();
-        const LabelKind kind = labelKind(label);
-        if (kind == LabelKind::Tooth) {
-            const auto in = input.teeth.find(labelUnn(label));
-            if (in == input.teeth.end() || in->second.triangles.empty()) continue;
-            Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "tooth"}};
-            d["parts"] = twoSidedDistances(boundary.surface, toothParts(boundary, o.cervicalBandMm), in->second,
-                                           {"crown", "root", "cervical"}, o, progress);
-            domains.push_back(d);
-        } else if (kind == LabelKind::Bone && !input.bone.triangles.empty()) {
-            std::vector<int> part(boundary.otherSide.size());
-            for (std::size_t t = 0; t < part.size(); ++t) part[t] = boundary.otherSide[t] == kOutsideLabel ? 0 : 1;
-            Json d = {{"name", labelName(label)}, {"label", label}, {"kind", "bone"}};
-            d["parts"] = twoSidedDistances(boundary.surface, part, input.bone, {"outer", "socket"}, o, progress);
-            domains.push_back(d);
-        }
-    }
+        const auto& [label, boundary] = regions[i];
+        measured[i] = domainDistances(input, label, *boundary, o, quiet);
+        progress.update(double(++done) / double(regions.size()));
+    });
+    Json domains = Json::array();
+    for (Json& d : measured)
+        if (!d.is_null()) domains.push_back(std::move(d));
     Json distance;
     distance["domains"] = domains;
     distance["summary"] = {{"crowns", aggregateParts(domains, "tooth", "crown")},
