@@ -196,7 +196,9 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
     TetStats tetStats;
     TetMesh mesh = log.run(jaw + ": tetrahedralize", progress, [&] {
         try {
-            return tetrahedralize(complex, options.tet, progress, &tetStats);
+            TetOptions tet = options.tet;
+            tet.checkIntersections = false;  // simplifyInterfaces has checked its output exactly
+            return tetrahedralize(complex, tet, progress, &tetStats);
         } catch (const Error& e) {
             // The surface took most of the run to make: keep it, so the failure can be studied
             // (`tetgen -pA <file>`, a viewer) without running everything again.

@@ -123,8 +123,10 @@ std::string interfaceKind(Label a, Label b);
 
 /// Simplifies `input` (an extracted interface complex: closed regions, consistent label pairs, no
 /// self-intersections). Seeds are placed anew inside every shell of every region of the output
-/// (filters/ShellSeeds.h). Throws Error when the options are invalid or the output check finds an
-/// intersection (which means the input had one); Cancelled when progress is cancelled.
+/// (filters/ShellSeeds.h). The output, its three-triangle corners split (filters/SplitCorners.h),
+/// is checked exactly for intersecting and degenerate triangles as handed on: Throws Error when
+/// that check finds one (which means the input had one) or the options are invalid; Cancelled
+/// when progress is cancelled.
 /// Cost: O(n log n) in the input triangles; memory about 215 bytes per input triangle.
 InterfaceComplex simplifyInterfaces(const InterfaceComplex& input, const SimplifyOptions& options = {},
                                     Progress& progress = noProgress(), SimplifyStats* stats = nullptr);

@@ -259,7 +259,7 @@ TetMesh tetrahedralize(const InterfaceComplex& input, const TetOptions& options,
     const InterfaceComplex& plc = repairHoles(input, repaired, seedVolumeBounds(input, options), st);
     rejectOpenRegions(plc, st.holeRepair);
     checkOptions(options);
-    if (options.checkIntersections) rejectSelfIntersections(plc);
+    if (options.checkIntersections || &plc != &input) rejectSelfIntersections(plc);  // a repaired surface always
 
     st.inputVertices = input.surface.vertices.size();
     st.inputTriangles = input.surface.triangles.size();

@@ -37,7 +37,8 @@ struct TetOptions {
     int optimizationLevel = 3;      ///< TetGen -O level (0..9), all local operations (scheme 7)
     /// Check the surface for intersecting and degenerate triangles first (exactly): TetGen 1.5.0
     /// crashes instead of throwing on intersecting facets, so turning this off is only safe for
-    /// input known to be clean.
+    /// input known to be clean (simplifyInterfaces' output). A surface the stage repaired
+    /// (tet/RepairHoles.h) is checked either way.
     bool checkIntersections = true;
     /// Extra TetGen runs (the rungs of tet/Tetrahedralize.cpp's ladder, at most 2) while tets under
     /// the target are left.
