@@ -35,8 +35,8 @@ struct SmallComponentStats {
 /// cavities (a canal) are kept. Labels are read before any is changed, so the result does not
 /// depend on the visiting order. Deterministic.
 /// The voxels it relabels are appended to `relabelled` when given. `edges`, when given, are the
-/// label edges of `labels` (findLabelEdges; else they are searched for).
-/// Cost: a flood fill bounded by the limit from every voxel next to another label.
+/// label edges of `labels`, sorted (findLabelEdges, updateLabelEdges; else they are searched for).
+/// Cost: a flood fill bounded by the limit from the lower voxel of every label edge (sorted).
 SmallComponentStats absorbSmallComponents(openvdb::Int32Grid& labels, std::size_t maxOutsideVoxels,
                                           std::size_t maxRegionVoxels,
                                           std::vector<openvdb::Coord>* relabelled = nullptr,
