@@ -72,7 +72,7 @@ std::vector<LabelEdge> prepareLabels(openvdb::Int32Grid& labels, const LabelFiel
     const std::size_t maxFragmentVoxels = voxels(options.maxFragmentMm3);
     ExtractStats local;
     ExtractStats& st = stats ? *stats : local;
-    std::vector<LabelEdge> edges = findLabelEdges(labels, field.distances);
+    std::vector<LabelEdge> edges = findLabelEdges(labels);
     std::vector<Coord> relabelled, repaired;
     const auto absorb = [&] {
         relabelled.clear();

@@ -13,10 +13,10 @@ namespace {
 using MaskTree = openvdb::MaskTree;
 
 /// Adds to `mask` the voxels of every tile face of `labels` across which the label changes into
-/// another tile (a change next to a leaf is seen from the leaf's voxels). Nothing else visits such
-/// a change when no distance band covers it: a level set whose sign jumps between inactive values
-/// (winding numbers closing a hole in the input surface, or deciding inside where overlapping
-/// shells leave no triangle) has one, and a missed change is a hole in the extracted surface.
+/// another tile or the background (a change next to a leaf is seen from the leaf's voxels).
+/// Nothing else visits such a change: a level set whose sign jumps between inactive values (winding
+/// numbers closing a hole in the input surface, or deciding inside where overlapping shells leave
+/// no triangle) has one, and a missed change is a hole in the extracted surface.
 void addTileFacesWithLabelChanges(const openvdb::Int32Grid& labels, MaskTree& mask) {
     using Leaf = openvdb::Int32Tree::LeafNodeType;
     constexpr int kBlock = int(Leaf::DIM);  // tiles are unions of whole leaf-sized blocks
@@ -82,13 +82,10 @@ void edgesOfLeaf(const MaskTree::LeafNodeType& maskLeaf, const openvdb::Int32Gri
 
 }  // namespace
 
-std::vector<LabelEdge> findLabelEdges(const openvdb::Int32Grid& labels,
-                                      const std::map<Label, openvdb::FloatGrid::Ptr>& distances) {
+std::vector<LabelEdge> findLabelEdges(const openvdb::Int32Grid& labels) {
     MaskTree mask;
     for (auto leaf = labels.tree().cbeginLeaf(); leaf; ++leaf)
         mask.touchLeaf(leaf->origin())->setValuesOn();
-    for (const auto& [label, grid] : distances)
-        if (grid) mask.topologyUnion(grid->tree());
     addTileFacesWithLabelChanges(labels, mask);
     mask.voxelizeActiveTiles();
 

@@ -93,7 +93,7 @@ SmallComponentStats absorbSmallComponents(openvdb::Int32Grid& labels, std::size_
     // one label (a serial scan of every leaf voxel with its six neighbours took about a tenth of
     // the extraction on the shared mandible); both voxels of each edge, sorted, took 1.4 s more.
     std::vector<LabelEdge> found;
-    if (!givenEdges) found = findLabelEdges(labels, {});
+    if (!givenEdges) found = findLabelEdges(labels);
     const std::vector<LabelEdge>& edges = givenEdges ? *givenEdges : found;
     std::vector<Coord> starts;
     starts.reserve(edges.size());

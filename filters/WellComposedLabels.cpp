@@ -221,7 +221,7 @@ std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
                                    Progress& progress, const std::vector<openvdb::Coord>* changedVoxels,
                                    std::vector<openvdb::Coord>* relabelled) {
     return repairCells(labels, distances,
-                       changedVoxels ? cellsAround(*changedVoxels) : dualCellsOf(findLabelEdges(labels, distances)),
+                       changedVoxels ? cellsAround(*changedVoxels) : dualCellsOf(findLabelEdges(labels)),
                        progress, relabelled);
 }
 
@@ -234,7 +234,7 @@ std::size_t makeLabelsWellComposed(openvdb::Int32Grid& labels,
 
 std::size_t countCriticalCells(const openvdb::Int32Grid& labels,
                                const std::map<Label, openvdb::FloatGrid::Ptr>& distances) {
-    return proposeFixes(labels, distances, dualCellsOf(findLabelEdges(labels, distances)), noProgress()).size();
+    return proposeFixes(labels, distances, dualCellsOf(findLabelEdges(labels)), noProgress()).size();
 }
 
 }  // namespace jawmesh

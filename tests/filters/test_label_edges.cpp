@@ -20,7 +20,7 @@ TEST(LabelEdges, HintedCellLookUpAgreesWithBinarySearchFromAnyHint) {
         for (int y = -9; y <= 9; ++y)
             for (int z = -9; z <= 9; ++z)
                 if (x * x + y * y + z * z <= 64) labels->tree().setValueOn(Coord(x, y, z), kMandibleBoneLabel);
-    const std::vector<Coord> cells = dualCellsOf(findLabelEdges(*labels, {}));
+    const std::vector<Coord> cells = dualCellsOf(findLabelEdges(*labels));
     ASSERT_GT(cells.size(), 500u);
     ASSERT_TRUE(std::is_sorted(cells.begin(), cells.end()));
 
@@ -44,6 +44,40 @@ TEST(LabelEdges, HintedCellLookUpAgreesWithBinarySearchFromAnyHint) {
             const std::size_t insertAt = std::size_t(std::lower_bound(cells.begin(), cells.end(), c) - cells.begin());
             EXPECT_EQ(hint, insertAt);
         }
+    }
+}
+
+TEST(LabelEdges, EveryLabelChangeIsFoundBetweenLeavesTilesAndBackground) {
+    // Leaves (a ball), tiles of two labels side by side and against the background (filled boxes,
+    // pruned), and a ball straddling a tile's face: every change a brute-force scan finds.
+    auto labels = openvdb::Int32Grid::create(kOutsideLabel);
+    labels->tree().fill(openvdb::CoordBBox(Coord(0, 0, 0), Coord(31, 15, 15)), kMandibleBoneLabel, true);
+    labels->tree().fill(openvdb::CoordBBox(Coord(32, 0, 0), Coord(47, 15, 15)), toothLabel(31), true);
+    for (int x = -12; x <= 12; ++x)
+        for (int y = -12; y <= 12; ++y)
+            for (int z = -12; z <= 12; ++z)
+                if (x * x + y * y + z * z <= 100) labels->tree().setValueOn(Coord(x - 20, y, z), pdlLabel(31));
+    for (int x = -5; x <= 5; ++x)
+        for (int y = -5; y <= 5; ++y)
+            for (int z = -5; z <= 5; ++z)
+                if (x * x + y * y + z * z <= 20) labels->tree().setValueOn(Coord(x + 32, y + 8, z + 16), pdlLabel(31));
+    labels->tree().prune();
+    ASSERT_GT(labels->tree().activeTileCount(), 0u);  // tiles as well as leaves
+
+    std::vector<LabelEdge> expected;
+    const openvdb::CoordBBox box(Coord(-40, -20, -20), Coord(60, 30, 30));
+    auto acc = labels->getConstAccessor();
+    for (auto it = box.begin(); it; ++it)
+        for (int axis = 0; axis < 3; ++axis) {
+            Coord w = *it;
+            w[axis] += 1;
+            if (acc.getValue(*it) != acc.getValue(w)) expected.push_back({*it, axis});
+        }
+    const std::vector<LabelEdge> found = findLabelEdges(*labels);
+    ASSERT_EQ(found.size(), expected.size());
+    for (std::size_t i = 0; i < found.size(); ++i) {
+        EXPECT_EQ(found[i].voxel, expected[i].voxel) << i;
+        EXPECT_EQ(found[i].axis, expected[i].axis) << i;
     }
 }
 

@@ -93,7 +93,7 @@ TEST(SmallComponents, ManyPocketsEachFoundOnceAndTheEdgesUpdated) {
                 fillBox(g, CoordBBox(Coord(x, y, z), Coord(x + 1, y, z)), kOutsideLabel);
                 ++made;
             }
-    std::vector<LabelEdge> edges = findLabelEdges(g, {});
+    std::vector<LabelEdge> edges = findLabelEdges(g);
     ASSERT_GT(2 * edges.size(), std::size_t(1) << 17);  // more than one chunk of starts
     std::vector<Coord> relabelled;
     const SmallComponentStats st = absorbSmallComponents(g, 8, 0, &relabelled, &edges);
@@ -101,7 +101,7 @@ TEST(SmallComponents, ManyPocketsEachFoundOnceAndTheEdgesUpdated) {
     EXPECT_EQ(st.pocketVoxels, 2 * std::size_t(made));
     EXPECT_EQ(relabelled.size(), 2 * std::size_t(made));
     updateLabelEdges(edges, g, relabelled);
-    const std::vector<LabelEdge> again = findLabelEdges(g, {});
+    const std::vector<LabelEdge> again = findLabelEdges(g);
     ASSERT_EQ(edges.size(), again.size());
     for (std::size_t i = 0; i < edges.size(); ++i) {
         EXPECT_EQ(edges[i].voxel, again[i].voxel);
