@@ -2,6 +2,7 @@
 #include "levelset/CarveGaps.h"
 
 #include "io/Error.h"
+#include "io/ParallelInOrder.h"
 #include "io/ResourceUsage.h"
 #include "levelset/CarveMeasure.h"
 #include "levelset/CarveRules.h"
@@ -486,12 +487,19 @@ void regionDistances(CarveContext& ctx) {
 void measureTeeth(CarveContext& ctx) {
     ProgressStage stage(ctx.progress, "carve: measure");
     CarveSummary& summary = ctx.summary;
-    for (const auto& t : ctx.teeth) {
+    // The teeth at once (each is parallel inside, but its thickness statistics are serial).
+    std::vector<ToothCarveSummary> measured(ctx.teeth.size());
+    std::atomic<std::size_t> done{0};
+    parallelForFirstErrorInOrder(ctx.teeth.size(), [&](std::size_t i) {
         ctx.progress.checkCancelled();
-        ToothCarveSummary s;
-        s.unn = t.unn;
-        s.implant = t.implant;
-        measureTooth(ctx.field, t.unn, ctx.options.capExclusionMm, s);
+        measured[i].unn = ctx.teeth[i].unn;
+        measured[i].implant = ctx.teeth[i].implant;
+        measureTooth(ctx.field, measured[i].unn, ctx.options.capExclusionMm, measured[i]);
+        stage.update(double(++done) / double(ctx.teeth.size()));
+    });
+    for (std::size_t i = 0; i < ctx.teeth.size(); ++i) {
+        const ToothWork& t = ctx.teeth[i];
+        const ToothCarveSummary& s = measured[i];
         if (s.pdlVolumeMm3 <= 0 && !s.implant)
             summary.warnings.push_back("tooth " + std::to_string(t.unn) + " has no bone contact: no PDL");
         else if (s.impacted)
