@@ -1,6 +1,8 @@
 // Implements filters/SplitCorners.h; what it computes, its rules and its contract are documented there.
 #include "filters/SplitCorners.h"
 
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <tuple>
@@ -23,7 +25,7 @@ std::vector<std::uint64_t> cornerEdges(const InterfaceComplex& c) {
             if (L == kOutsideLabel) continue;
             for (auto v : T[t]) incidences.emplace_back(v, L, std::int32_t(t));
         }
-    std::sort(incidences.begin(), incidences.end());
+    tbb::parallel_sort(incidences.begin(), incidences.end());  // distinct tuples: the same order
     std::vector<std::uint64_t> edges;
     for (std::size_t i = 0; i < incidences.size();) {
         std::size_t j = i;
