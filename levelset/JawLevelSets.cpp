@@ -2,8 +2,8 @@
 #include "levelset/JawLevelSets.h"
 
 #include "io/Error.h"
-#include "levelset/InsideOverlap.h"
 #include "io/ParallelInOrder.h"
+#include "levelset/InsideOverlap.h"
 #include "levelset/MeshToLevelSet.h"
 
 #include <algorithm>
@@ -29,6 +29,25 @@ BandWidths boneBandWidths(const JawSurfaces& surfaces, double voxelMm, double bo
                                       openvdb::Coord(index(box.max.x(), true), index(box.max.y(), true), index(box.max.z(), true)));
     }
     return widths;
+}
+
+/// Teeth in contact overlap a little and the carving splits them; a large shared volume is a
+/// segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.
+/// The pairs at once; the error of the first pair in the order of the teeth.
+void refuseMergedTeeth(const JawLevelSets& sets, const JawCase& jawCase, Progress& progress) {
+    std::vector<std::pair<int, int>> pairs;  // (UNN, UNN)
+    for (auto a = sets.teeth.begin(); a != sets.teeth.end(); ++a)
+        for (auto b = std::next(a); b != sets.teeth.end(); ++b) pairs.emplace_back(a->first, b->first);
+    parallelForFirstErrorInOrder(pairs.size(), [&](std::size_t i) {
+        progress.checkCancelled();
+        const auto [a, b] = pairs[i];
+        const double shared = insideOverlapFraction(*sets.teeth.at(a), *sets.teeth.at(b));
+        if (shared > kHeavyToothOverlapFraction)
+            throw Error(toothSource(jawCase, b), "overlaps " + toothSource(jawCase, a) + " by " +
+                                                     std::to_string(static_cast<int>(shared * 100 + 0.5)) +
+                                                     "% of the smaller tooth's volume: the same tooth exported twice, or two "
+                                                     "teeth segmented into each other? Fix the segmentation.");
+    });
 }
 
 }  // namespace
@@ -71,21 +90,7 @@ JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, d
     sets.bone = grids[0];
     std::size_t j = 1;
     for (const auto& [unn, mesh] : surfaces.teeth) sets.teeth[unn] = grids[j++];
-    // Teeth in contact overlap a little and the carving splits them; a large shared volume is a
-    // segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.
-    std::vector<std::pair<int, int>> pairs;  // (UNN, UNN), in the order of the teeth
-    for (auto a = sets.teeth.begin(); a != sets.teeth.end(); ++a)
-        for (auto b = std::next(a); b != sets.teeth.end(); ++b) pairs.emplace_back(a->first, b->first);
-    parallelForFirstErrorInOrder(pairs.size(), [&](std::size_t i) {
-        progress.checkCancelled();
-        const auto [a, b] = pairs[i];
-        const double shared = insideOverlapFraction(*sets.teeth.at(a), *sets.teeth.at(b));
-        if (shared > kHeavyToothOverlapFraction)
-            throw Error(toothSource(jawCase, b), "overlaps " + toothSource(jawCase, a) + " by " +
-                                                     std::to_string(static_cast<int>(shared * 100 + 0.5)) +
-                                                     "% of the smaller tooth's volume: the same tooth exported twice, or two "
-                                                     "teeth segmented into each other? Fix the segmentation.");
-    });
+    refuseMergedTeeth(sets, jawCase, progress);
     return sets;
 }
 
