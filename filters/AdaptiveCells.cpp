@@ -387,7 +387,8 @@ void boxMembers(Mesh& mesh, std::size_t first) {
             k.memberBoxes.clear();
             for (std::size_t i = 0; i < k.members.size(); i += kMembersPerBox) {
                 BBox box;
-                for (std::size_t j = i; j < std::min(k.members.size(), i + kMembersPerBox); ++j) box.extend(mesh.P[std::size_t(k.members[j])]);
+                const std::size_t end = std::min(k.members.size(), i + kMembersPerBox);
+                for (std::size_t j = i; j < end; ++j) box.extend(mesh.P[std::size_t(k.members[j])]);
                 k.memberBoxes.push_back(box);
             }
         }

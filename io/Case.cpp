@@ -7,7 +7,6 @@
 #include "io/ParallelInOrder.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -175,13 +174,8 @@ JawSurfaces loadJaw(const JawCase& jc, const LoadOptions& options, Progress& pro
     std::vector<SurfaceMesh> meshes(paths.size());
     {
         ProgressStage stage(progress, "read " + jawName(jc.jaw) + " surfaces");
-        std::atomic<std::size_t> done{0};
         // the first failing file in a fixed order, whatever the threads
-        parallelForFirstErrorInOrder(paths.size(), [&](std::size_t i) {
-            progress.checkCancelled();
-            meshes[i] = readSurface(paths[i]);
-            stage.update(static_cast<double>(++done) / static_cast<double>(paths.size()));
-        });
+        parallelForFirstErrorInOrder(paths.size(), progress, [&](std::size_t i) { meshes[i] = readSurface(paths[i]); });
     }
     out.bone = std::move(meshes[0]);
     if (!jc.axesPath.empty()) out.axes = readToothAxes(jc.axesPath);

@@ -3,8 +3,11 @@
 // volume's regions, labelling TetGen's groups).
 #pragma once
 
+#include "io/Progress.h"
+
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <vector>
@@ -25,6 +28,22 @@ void parallelForFirstErrorInOrder(std::size_t n, F&& f) {
     });
     for (const std::exception_ptr& e : errors)
         if (e) std::rethrow_exception(e);
+}
+
+/// The same over steps of a stage of `progress`: each step first checks for cancellation, and
+/// after it the share done goes to progress.update, the steps weighed by `weights` (e.g. their
+/// triangles) when given, else each one alike.
+template <typename F>
+void parallelForFirstErrorInOrder(std::size_t n, Progress& progress, F&& f, const std::vector<std::size_t>& weights = {}) {
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < n; ++i) total += weights.empty() ? 1 : weights[i];
+    std::atomic<std::size_t> done{0};
+    parallelForFirstErrorInOrder(n, [&](std::size_t i) {
+        progress.checkCancelled();
+        f(i);
+        const std::size_t now = done += weights.empty() ? 1 : weights[i];
+        progress.update(total > 0 ? double(now) / double(total) : 1.0);
+    });
 }
 
 }  // namespace jawmesh

@@ -13,7 +13,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -258,15 +257,10 @@ void prepareTeeth(CarveContext& ctx, const std::map<int, FloatGrid::ConstPtr>& t
         boxes.push_back(in[i].second->evalActiveVoxelBoundingBox());
     }
     ProgressStage stage(ctx.progress, "carve: tooth bands");
-    std::atomic<int> done{0};
-    tbb::parallel_for(std::size_t(0), in.size(), [&](std::size_t i) {
-        if (ctx.progress.cancelled()) return;
-        ToothWork& t = ctx.teeth[i];
+    parallelForFirstErrorInOrder(in.size(), ctx.progress, [&](std::size_t i) {
         const auto [exVoxels, inVoxels] = bandVoxels(ctx.teeth, boxes, i, rules);
-        prepareTooth(t, *in[i].second, ctx.bone, rules, exVoxels, inVoxels, ctx.options);
-        stage.update(double(++done) / double(in.size()));
+        prepareTooth(ctx.teeth[i], *in[i].second, ctx.bone, rules, exVoxels, inVoxels, ctx.options);
     });
-    ctx.progress.checkCancelled();
 }
 
 /// The label of voxel c near the candidate teeth `cand` and its carved bone distance: bone where
@@ -489,13 +483,10 @@ void measureTeeth(CarveContext& ctx) {
     CarveSummary& summary = ctx.summary;
     // The teeth at once (each is parallel inside, but its thickness statistics are serial).
     std::vector<ToothCarveSummary> measured(ctx.teeth.size());
-    std::atomic<std::size_t> done{0};
-    parallelForFirstErrorInOrder(ctx.teeth.size(), [&](std::size_t i) {
-        ctx.progress.checkCancelled();
+    parallelForFirstErrorInOrder(ctx.teeth.size(), ctx.progress, [&](std::size_t i) {
         measured[i].unn = ctx.teeth[i].unn;
         measured[i].implant = ctx.teeth[i].implant;
         measureTooth(ctx.field, measured[i].unn, ctx.options.capExclusionMm, measured[i]);
-        stage.update(double(++done) / double(ctx.teeth.size()));
     });
     for (std::size_t i = 0; i < ctx.teeth.size(); ++i) {
         const ToothWork& t = ctx.teeth[i];

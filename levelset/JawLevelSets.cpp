@@ -7,7 +7,6 @@
 #include "levelset/MeshToLevelSet.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -68,13 +67,12 @@ JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, d
     const double toothBand = std::max(boneBandVoxels, toothBandVoxels);
     for (const auto& [unn, mesh] : surfaces.teeth)
         jobs.push_back({&mesh, BandWidths{toothBand, toothBand, {}}, toothLabel(unn), toothSource(jawCase, unn)});
-    std::size_t allTriangles = 0;
-    for (const Job& job : jobs) allTriangles += job.mesh->triangles.size();
+    std::vector<std::size_t> triangles;  // the bar's weights
+    for (const Job& job : jobs) triangles.push_back(job.mesh->triangles.size());
     std::vector<openvdb::FloatGrid::Ptr> grids(jobs.size());
     ProgressStage stage(progress, "level sets");
     CancelOnlyProgress quiet(progress);
-    std::atomic<std::size_t> trianglesDone{0};
-    parallelForFirstErrorInOrder(jobs.size(), [&](std::size_t j) {
+    parallelForFirstErrorInOrder(jobs.size(), progress, [&](std::size_t j) {
         const Job& job = jobs[j];
         try {
             MeshToLevelSetStats stats;
@@ -83,9 +81,7 @@ JawLevelSets jawLevelSets(const JawSurfaces& surfaces, const JawCase& jawCase, d
         } catch (const Error& e) {
             throw Error(job.source, e.reason());
         }
-        const std::size_t done = trianglesDone += job.mesh->triangles.size();
-        stage.update(double(done) / double(std::max<std::size_t>(allTriangles, 1)));
-    });
+    }, triangles);
     JawLevelSets sets;
     sets.bone = grids[0];
     std::size_t j = 1;

@@ -11,7 +11,6 @@
 #include <openvdb/tree/LeafManager.h>
 
 #include <algorithm>
-#include <atomic>
 #include <map>
 
 namespace jawmesh {
@@ -133,14 +132,11 @@ JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment&
     const std::vector<openvdb::MaskGrid::Ptr> masks = segmentMasks(v, groups);
     std::vector<SurfaceMesh> surfaces(jobs.size());
     ProgressStage stage(progress, jawName(jaw) + " label surfaces");
-    std::atomic<std::size_t> done{0};
-    parallelForFirstErrorInOrder(jobs.size(), [&](std::size_t j) {
-        progress.checkCancelled();
+    parallelForFirstErrorInOrder(jobs.size(), progress, [&](std::size_t j) {
         // A kept PDL is the gap between root and socket, 2-4 voxels thick: matching the volume
         // of the solids on both sides would move both its walls into it (4 % of the phantom's
         // PDL, where iso 0 leaves it within 2 % and the solids within 0.5 %).
         surfaces[j] = maskSurface(v, *masks[j], kLabelSmoothingSteps, !keepPdl);
-        stage.update(static_cast<double>(++done) / static_cast<double>(jobs.size()));
     });
     JawSurfaces out;
     out.jaw = jaw;

@@ -15,7 +15,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -425,12 +424,8 @@ Json distanceReport(const JawSurfaces& input, const std::map<Label, RegionBounda
     for (const auto& [label, boundary] : boundaries) regions.emplace_back(label, &boundary);
     std::vector<Json> measured(regions.size());
     CancelOnlyProgress quiet(progress);
-    std::atomic<std::size_t> done{0};
-    parallelForFirstErrorInOrder(regions.size(), [&](std::size_t i) {
-        progress.checkCancelled();
-        const auto& [label, boundary] = regions[i];
-        measured[i] = domainDistances(input, label, *boundary, o, quiet);
-        progress.update(double(++done) / double(regions.size()));
+    parallelForFirstErrorInOrder(regions.size(), progress, [&](std::size_t i) {
+        measured[i] = domainDistances(input, regions[i].first, *regions[i].second, o, quiet);
     });
     Json domains = Json::array();
     for (Json& d : measured)
