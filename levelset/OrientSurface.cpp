@@ -65,36 +65,44 @@ double triangleArea(const std::vector<Vec3>& v, const Tri& t) {
                      .norm();
 }
 /// Welded, without degenerate triangles, then without duplicates (same vertex set; the first one
-/// is kept); counts what it drops in out.
+/// is kept); counts what it drops in out. Each triangle's tests and sorted key are made once, in
+/// parallel (keys remade in every comparison of the sort were 1.6 s of the shared mandible's bone).
 void cleanTriangles(const SurfaceMesh& mesh, const std::vector<Index>& remap, OrientedSurface& out) {
     const BBox box = boundingBox(mesh);
     const double scale = box.empty() ? 1.0 : std::max(box.size().maxCoeff(), 1e-9);
     const double minDoubleArea = 1e-14 * scale * scale;
-    std::vector<Tri> tris;
-    tris.reserve(mesh.triangles.size());
-    for (const Tri& t : mesh.triangles) {
-        const Tri w = {remap[static_cast<std::size_t>(t[0])], remap[static_cast<std::size_t>(t[1])],
-                       remap[static_cast<std::size_t>(t[2])]};
-        if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2] || 2.0 * triangleArea(out.vertices, w) <= minDoubleArea) {
-            ++out.droppedDegenerate;
-            continue;
+    const std::size_t n = mesh.triangles.size();
+    std::vector<Tri> welded(n);
+    std::vector<char> degenerate(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+            const Tri& f = mesh.triangles[t];
+            const Tri w = {remap[static_cast<std::size_t>(f[0])], remap[static_cast<std::size_t>(f[1])],
+                           remap[static_cast<std::size_t>(f[2])]};
+            welded[t] = w;
+            degenerate[t] = w[0] == w[1] || w[1] == w[2] || w[0] == w[2] || 2.0 * triangleArea(out.vertices, w) <= minDoubleArea;
         }
-        tris.push_back(w);
-    }
-    std::vector<Index> order(tris.size());
-    std::iota(order.begin(), order.end(), 0);
-    auto sortedKey = [&](Index i) {
-        Tri k = tris[static_cast<std::size_t>(i)];
-        std::sort(k.begin(), k.end());
-        return k;
-    };
-    tbb::parallel_sort(order.begin(), order.end(), [&](Index a, Index b) {
-        const Tri ka = sortedKey(a), kb = sortedKey(b);
-        return ka < kb || (ka == kb && a < b);
     });
+    std::vector<Tri> tris;
+    tris.reserve(n);
+    for (std::size_t t = 0; t < n; ++t) {
+        if (degenerate[t]) ++out.droppedDegenerate;
+        else tris.push_back(welded[t]);
+    }
+    std::vector<Tri>().swap(welded);
+    // (sorted corners, index): equal vertex sets side by side, the first triangle first
+    std::vector<std::pair<Tri, Index>> keyed(tris.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            Tri k = tris[i];
+            std::sort(k.begin(), k.end());
+            keyed[i] = {k, static_cast<Index>(i)};
+        }
+    });
+    tbb::parallel_sort(keyed.begin(), keyed.end());
     std::vector<char> keep(tris.size(), 1);
-    for (std::size_t i = 1; i < order.size(); ++i)
-        if (sortedKey(order[i]) == sortedKey(order[i - 1])) keep[static_cast<std::size_t>(order[i])] = 0;
+    for (std::size_t i = 1; i < keyed.size(); ++i)
+        if (keyed[i].first == keyed[i - 1].first) keep[static_cast<std::size_t>(keyed[i].second)] = 0;
     for (std::size_t i = 0; i < tris.size(); ++i) {
         if (keep[i]) out.triangles.push_back(tris[i]);
         else ++out.droppedDuplicate;
