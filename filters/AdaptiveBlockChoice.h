@@ -58,9 +58,9 @@ LabelWindow windowOf(const openvdb::Int32Grid::ConstAccessor& labels, const Coor
 void chooseInChildren(const LabelWindow& labels, const std::vector<Coord>& cells, const Coord& lo,
                       int level, const MergeRule& rule, const std::vector<std::int32_t>& members, std::vector<Block>& out);
 
-/// Every cell in its block at level `farTop` (top or more), each block tried largest first
-/// (parallel, in block order); a block above the top level near the teeth (`near`, on the grid of
-/// top-level blocks) starts from its children.
+/// Every cell (`cells` sorted, as dualCellsOf gives them) in its block at level `farTop` (top or
+/// more), each block tried largest first (parallel, in block order); a block above the top level
+/// near the teeth (`near`, on the grid of top-level blocks) starts from its children.
 std::vector<Block> initialBlocks(const openvdb::Int32Grid& labels, const std::vector<Coord>& cells, int top,
                                  int farTop, const MergeRule& rule, const openvdb::BoolGrid& near);
 
