@@ -11,7 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
+#include <optional>
 #include <vector>
 
 namespace jawmesh {
@@ -23,11 +23,26 @@ using openvdb::Vec3d;
 
 const Coord kFace[6] = {Coord(1, 0, 0), Coord(-1, 0, 0), Coord(0, 1, 0), Coord(0, -1, 0), Coord(0, 0, 1), Coord(0, 0, -1)};
 
-/// Points bucketed in cubic cells for nearest-point queries.
-class PointHash {
+/// Points bucketed in the cubic cells of their bounding box (compressed rows), for nearest-point
+/// queries. A dense grid, not a hash map: the cap exclusion's queries look at a hundred cells each,
+/// mostly empty, and the map's look-ups were most of the carve's measurement.
+class PointGrid {
 public:
-    PointHash(std::vector<Vec3d> points, double cell) : points_(std::move(points)), cell_(cell) {
-        for (std::size_t i = 0; i < points_.size(); ++i) cells_[key(cellOf(points_[i]))].push_back(std::uint32_t(i));
+    PointGrid(std::vector<Vec3d> points, double cell) : points_(std::move(points)), cell_(cell) {
+        if (points_.empty()) return;
+        Vec3d lo = points_[0], hi = lo;
+        for (const Vec3d& p : points_) lo = minComponent(lo, p), hi = maxComponent(hi, p);
+        // A coarser cell where the box would need too many: the nearest point is the same.
+        const Vec3d extent = hi - lo;
+        cell_ = std::max(cell_, std::max({extent[0], extent[1], extent[2]}) / 1000.0);
+        lo_ = cellOf(lo);
+        dim_ = cellOf(hi) - lo_ + Coord(1);
+        start_.assign(std::size_t(dim_[0]) * std::size_t(dim_[1]) * std::size_t(dim_[2]) + 1, 0);
+        for (const Vec3d& p : points_) ++start_[indexOf(cellOf(p) - lo_) + 1];
+        for (std::size_t i = 1; i < start_.size(); ++i) start_[i] += start_[i - 1];
+        std::vector<std::uint32_t> at(start_.begin(), start_.end() - 1);
+        order_.resize(points_.size());
+        for (std::size_t i = 0; i < points_.size(); ++i) order_[at[indexOf(cellOf(points_[i]) - lo_)]++] = std::uint32_t(i);
     }
     bool empty() const { return points_.empty(); }
     /// Distance to the nearest point, or +inf when none is within maxDist.
@@ -35,18 +50,21 @@ public:
         if (points_.empty()) return std::numeric_limits<double>::infinity();
         const Coord c = cellOf(p);
         double best2 = maxDist * maxDist;
+        const auto visit = [&](const Coord& q) {
+            const Coord d = q - lo_;
+            if (d[0] < 0 || d[1] < 0 || d[2] < 0 || d[0] >= dim_[0] || d[1] >= dim_[1] || d[2] >= dim_[2]) return;
+            const std::size_t i = indexOf(d);
+            for (std::uint32_t k = start_[i]; k < start_[i + 1]; ++k) best2 = std::min(best2, (points_[order_[k]] - p).lengthSqr());
+        };
         const int rings = int(std::ceil(maxDist / cell_));
         for (int r = 0; r <= rings; ++r) {
             // Every point in ring r is at least (r - 1) * cell away.
             if (r >= 1 && double(r - 1) * cell_ * double(r - 1) * cell_ > best2) break;
             for (int i = -r; i <= r; ++i)
-                for (int j = -r; j <= r; ++j)
-                    for (int k = -r; k <= r; ++k) {
-                        if (std::max({std::abs(i), std::abs(j), std::abs(k)}) != r) continue;
-                        const auto it = cells_.find(key(c.offsetBy(i, j, k)));
-                        if (it == cells_.end()) continue;
-                        for (const auto idx : it->second) best2 = std::min(best2, (points_[idx] - p).lengthSqr());
-                    }
+                for (int j = -r; j <= r; ++j) {
+                    const bool side = std::abs(i) == r || std::abs(j) == r;  // else only the ring's two caps in z
+                    for (int k = -r; k <= r; k += side || r == 0 ? 1 : 2 * r) visit(c.offsetBy(i, j, k));
+                }
         }
         return best2 < maxDist * maxDist ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
     }
@@ -55,20 +73,21 @@ private:
     Coord cellOf(const Vec3d& p) const {
         return Coord(int(std::floor(p[0] / cell_)), int(std::floor(p[1] / cell_)), int(std::floor(p[2] / cell_)));
     }
-    static std::uint64_t key(const Coord& c) {
-        return (std::uint64_t(std::uint32_t(c[0]) & 0x1FFFFF) << 42) | (std::uint64_t(std::uint32_t(c[1]) & 0x1FFFFF) << 21) |
-               std::uint64_t(std::uint32_t(c[2]) & 0x1FFFFF);
+    std::size_t indexOf(const Coord& d) const {
+        return (std::size_t(d[2]) * std::size_t(dim_[1]) + std::size_t(d[1])) * std::size_t(dim_[0]) + std::size_t(d[0]);
     }
     std::vector<Vec3d> points_;
     double cell_;
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+    Coord lo_, dim_;
+    std::vector<std::uint32_t> start_, order_;
 };
 
-/// Zero crossing of `dist` between voxel centres a and b (world), or the midpoint.
-Vec3d crossing(const openvdb::FloatGrid* dist, const openvdb::math::Transform& xf, const Coord& a, const Coord& b) {
+/// Zero crossing of the distance grid `dist` (an accessor; none: no grid) between voxel centres a
+/// and b (world), or the midpoint.
+Vec3d crossing(const openvdb::FloatGrid::ConstAccessor* dist, const openvdb::math::Transform& xf, const Coord& a, const Coord& b) {
     const Vec3d pa = xf.indexToWorld(a), pb = xf.indexToWorld(b);
     if (dist) {
-        const float fa = dist->tree().getValue(a), fb = dist->tree().getValue(b);
+        const float fa = dist->getValue(a), fb = dist->getValue(b);
         if ((fa < 0) != (fb < 0) && fa != fb) {
             const double t = std::clamp(double(fa) / double(fa - fb), 0.0, 1.0);
             return pa + (pb - pa) * t;
@@ -131,6 +150,9 @@ void measureTooth(const LabelField& field, int unn, double capExclusionMm, Tooth
     std::vector<std::size_t> rootFaces(n, 0), toothFaces(n, 0), toothCount(n, 0), pdlCount(n, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
         auto acc = labels.getConstAccessor();
+        std::optional<openvdb::FloatGrid::ConstAccessor> toothAcc, boneAcc;
+        if (toothDist) toothAcc.emplace(toothDist->getConstAccessor());
+        if (boneDist) boneAcc.emplace(boneDist->getConstAccessor());
         for (std::size_t li = r.begin(); li != r.end(); ++li) {
             const LeafT* leafPtr = acc.probeConstLeaf(blocks[li]);
             if (!leafPtr) {
@@ -153,10 +175,10 @@ void measureTooth(const LabelField& field, int unn, double capExclusionMm, Tooth
                         ++toothFaces[li];
                         if (m == pdlL) {
                             ++rootFaces[li];
-                            toothSide[li].push_back(crossing(toothDist, xf, p, q));
+                            toothSide[li].push_back(crossing(toothAcc ? &*toothAcc : nullptr, xf, p, q));
                         }
                     } else if (m == boneL) {
-                        boneSide[li].push_back(crossing(boneDist, xf, q, p));
+                        boneSide[li].push_back(crossing(boneAcc ? &*boneAcc : nullptr, xf, q, p));
                     } else if (m != toothL && m != pdlL) {
                         openSide[li].push_back((xf.indexToWorld(p) + xf.indexToWorld(q)) * 0.5);
                     }
@@ -176,8 +198,8 @@ void measureTooth(const LabelField& field, int unn, double capExclusionMm, Tooth
     out.pdlVolumeMm3 = double(pdlVoxels) * voxel3;
     out.rootAreaFraction = tf ? double(rf) / double(tf) : 0.0;
     const auto toothPts = flatten(toothSide);
-    const PointHash bonePts(flatten(boneSide), 0.25);
-    const PointHash openPts(flatten(openSide), 0.25);
+    const PointGrid bonePts(flatten(boneSide), 0.25);
+    const PointGrid openPts(flatten(openSide), 0.25);
     out.impacted = pdlVoxels > 0 && openPts.empty();
 
     std::vector<double> t(toothPts.size(), -1.0);
