@@ -362,11 +362,29 @@ void assembleLabels(CarveContext& ctx) {
     }
 }
 
+/// The tooth (its index) whose tooth or PDL each label is, -1 for other labels: a table by label
+/// value (a few hundred), read 27 times for every voxel near the teeth by the clearance pass, where
+/// a map's search was most of its time.
+class ToothOfLabel {
+public:
+    explicit ToothOfLabel(const std::vector<ToothWork>& teeth) {
+        for (int k = 0; k < int(teeth.size()); ++k) set(teeth[std::size_t(k)].toothL, k), set(teeth[std::size_t(k)].pdlL, k);
+    }
+    int operator()(Label l) const { return l >= 0 && std::size_t(l) < tooth_.size() ? tooth_[std::size_t(l)] : -1; }
+
+private:
+    void set(Label l, int k) {
+        if (std::size_t(l) >= tooth_.size()) tooth_.resize(std::size_t(l) + 1, -1);
+        tooth_[std::size_t(l)] = k;
+    }
+    std::vector<int> tooth_;
+};
+
 /// Whether voxel p of tooth `a`'s tooth or PDL gives way to a 26-neighbour of another tooth's
 /// (the one with the smaller margin to the bisector; UNN order on ties); counts a tooth voxel
 /// touching bone in touchesBone.
 bool dropForClearance(const CarveContext& ctx, Accessors& acc, const openvdb::Int32Grid::ConstAccessor& la,
-                      const std::map<Label, int>& ownerOf, const Coord& p, Label l, int a, bool& touchesBone) {
+                      const ToothOfLabel& ownerOf, const Coord& p, Label l, int a, bool& touchesBone) {
     const auto& teeth = ctx.teeth;
     touchesBone = false;
     for (int dx = -1; dx <= 1; ++dx)
@@ -375,9 +393,8 @@ bool dropForClearance(const CarveContext& ctx, Accessors& acc, const openvdb::In
                 const Coord q = p.offsetBy(dx, dy, dz);
                 const Label m = la.getValue(q);
                 if (m == ctx.boneL && l == teeth[a].toothL && !teeth[a].implant) touchesBone = true;
-                const auto other = ownerOf.find(m);
-                if (other == ownerOf.end() || other->second == a) continue;
-                const int b = other->second;
+                const int b = ownerOf(m);
+                if (b < 0 || b == a) continue;
                 const double marginP = acc.T[b].getValue(p) - acc.T[a].getValue(p);
                 const double marginQ = acc.T[a].getValue(q) - acc.T[b].getValue(q);
                 if (marginP < marginQ || (marginP == marginQ && teeth[a].unn > teeth[b].unn)) return true;
@@ -388,8 +405,7 @@ bool dropForClearance(const CarveContext& ctx, Accessors& acc, const openvdb::In
 /// Phase 4. Clearance, discretely: no voxel of one tooth or its PDL 26-touches another tooth's.
 void enforceClearance(CarveContext& ctx) {
     ProgressStage stage(ctx.progress, "carve: clearance");
-    std::map<Label, int> ownerOf;
-    for (int k = 0; k < int(ctx.teeth.size()); ++k) ownerOf[ctx.teeth[k].toothL] = k, ownerOf[ctx.teeth[k].pdlL] = k;
+    const ToothOfLabel ownerOf(ctx.teeth);
     const std::size_t leafCount = ctx.nearLeaves->leafCount();
     std::vector<std::vector<Coord>> drops(leafCount);
     std::vector<std::size_t> boneContacts(leafCount, 0);
@@ -401,10 +417,10 @@ void enforceClearance(CarveContext& ctx) {
             for (auto v = ctx.nearLeaves->leaf(li).cbeginValueOn(); v; ++v) {
                 const Coord p = v.getCoord();
                 const Label l = la.getValue(p);
-                const auto own = ownerOf.find(l);
-                if (own == ownerOf.end()) continue;
+                const int own = ownerOf(l);
+                if (own < 0) continue;
                 bool touchesBone = false;
-                if (dropForClearance(ctx, acc, la, ownerOf, p, l, own->second, touchesBone)) drops[li].push_back(p);
+                if (dropForClearance(ctx, acc, la, ownerOf, p, l, own, touchesBone)) drops[li].push_back(p);
                 else if (touchesBone) ++boneContacts[li];
             }
         }
