@@ -32,13 +32,14 @@ BandWidths boneBandWidths(const JawSurfaces& surfaces, double voxelMm, double bo
 
 /// Teeth in contact overlap a little and the carving splits them; a large shared volume is a
 /// segmentation error (one tooth exported twice, two teeth merged) that would mesh silently wrong.
-/// The pairs at once; the error of the first pair in the order of the teeth.
-void refuseMergedTeeth(const JawLevelSets& sets, const JawCase& jawCase, Progress& progress) {
+/// The pairs at once; the error of the first pair in the order of the teeth. Only cancellation is
+/// taken from `progress` (its bar has finished the level sets).
+void refuseMergedTeeth(const JawLevelSets& sets, const JawCase& jawCase, const Progress& progress) {
     std::vector<std::pair<int, int>> pairs;  // (UNN, UNN)
     for (auto a = sets.teeth.begin(); a != sets.teeth.end(); ++a)
         for (auto b = std::next(a); b != sets.teeth.end(); ++b) pairs.emplace_back(a->first, b->first);
-    parallelForFirstErrorInOrder(pairs.size(), [&](std::size_t i) {
-        progress.checkCancelled();
+    CancelOnlyProgress quiet(progress);
+    parallelForFirstErrorInOrder(pairs.size(), quiet, [&](std::size_t i) {
         const auto [a, b] = pairs[i];
         const double shared = insideOverlapFraction(*sets.teeth.at(a), *sets.teeth.at(b));
         if (shared > kHeavyToothOverlapFraction)
