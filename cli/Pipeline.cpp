@@ -7,6 +7,7 @@
 #include "fe/ToothAxesFromShape.h"
 #include "io/Error.h"
 #include "io/GmshWriter.h"
+#include "io/HugePageMalloc.h"
 #include "io/PolyWriter.h"
 #include "io/LabelsJson.h"
 #include "io/MeditWriter.h"
@@ -122,6 +123,8 @@ nlohmann::json runJaw(const JawCase& jawCase, const RunOptions& options, const s
           {"openvdb", OPENVDB_LIBRARY_VERSION_STRING},
           {"embree", RTC_VERSION_STRING},
           {"tetgen", "1.5"}}},
+        // what the timings ran with (io/HugePageMalloc.h)
+        {"huge_pages", {{"kernel_mode", kernelHugePageMode()}, {"malloc_advises", mallocAdvisesHugePages()}}},
         {"stages", nlohmann::json::array()},
     };
     const auto start = Clock::now();

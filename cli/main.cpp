@@ -3,6 +3,7 @@
 #include "cli/NumberChecks.h"
 #include "cli/TerminalProgress.h"
 #include "io/Error.h"
+#include "io/HugePageMalloc.h"
 
 #include <openvdb/openvdb.h>
 #include <tbb/global_control.h>
@@ -56,6 +57,7 @@ Progress& terminalProgress(const GlobalOptions& global) {
 
 int main(int argc, char** argv) {
     using namespace jawmesh;
+    reexecWithHugePageMalloc(argv);  // before any allocation worth the name
     CLI::App app{"jawmesh: dense jaw segmentation surfaces -> conformal labeled tetrahedral FE models"};
     app.set_version_flag("--version", std::string("jawmesh ") + JAWMESH_VERSION);
     app.require_subcommand(1);

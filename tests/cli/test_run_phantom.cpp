@@ -1,5 +1,6 @@
 // `jawmesh run` end to end on a one-tooth phantom: the figures issue #5 asks of every run, measured
 // from the written files (tests/cli/support_RunChecks.h), not from the pipeline's own report.
+#include "io/HugePageMalloc.h"
 #include "support/TestData.h"
 #include "support_RunChecks.h"
 
@@ -33,6 +34,12 @@ TEST(RunPhantom, MeshMeetsTheConformityQualityAndAccuracyTargets) {
     const auto record = nlohmann::json::parse(in);
     EXPECT_EQ(record.at("mesh").at("tets").get<std::size_t>(), f.quality.tets);
     EXPECT_NEAR(record.at("quality").at("min_dihedral_deg").get<double>(), f.quality.minDihedralDeg, 1e-6);
+    // the binary re-executed itself for huge pages where the kernel waits to be asked (and the
+    // environment had not decided); otherwise it ran with the environment's say
+    const std::string mode = kernelHugePageMode();
+    EXPECT_EQ(record.at("huge_pages").at("kernel_mode").get<std::string>(), mode);
+    const bool expectAdvised = tunablesForHugePages(mode, std::getenv("GLIBC_TUNABLES")) || mallocAdvisesHugePages();
+    EXPECT_EQ(record.at("huge_pages").at("malloc_advises").get<bool>(), expectAdvised);
 }
 
 }  // namespace
