@@ -337,10 +337,14 @@ bool CollapseCheck::newTrianglesNearInput(const CollapsePlan& plan) {
         // near the teeth when any corner or the nearest vertex is (NearTeeth.h): the tighter bound
         Bounds corner{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
         for (std::int32_t c : newTris_[m]) corner = corner.min(boundsOf(M.gid[std::size_t(c)], moved_[m]));
+        // below every bound a sample could be judged by: a vertex that near settles the sample
+        // without finding the nearest (a far-bone triangle takes a thousand carried vertices)
+        double settleFine = corner.fine;
+        for (std::int32_t q : ownNear_.ids) settleFine = std::min(settleFine, M.fineBoundOf(q, moved_[m]));
         for (const Vec3& x : samplesOf(newCorners_[m])) {
-            if (sampleNearInput(x, moved_[m], corner, ownNear_)) continue;
+            if (sampleNearInput(x, moved_[m], corner, ownNear_, settleFine)) continue;
             if (allNear_.ids.empty()) collectCollapseVertices(plan);
-            if (!sampleNearInput(x, moved_[m], corner, allNear_)) return false;
+            if (!sampleNearInput(x, moved_[m], corner, allNear_, 0.0)) return false;
         }
     }
     return true;
@@ -363,8 +367,10 @@ CollapseCheck::Bounds CollapseCheck::boundsOf(std::int32_t p, std::int32_t t) co
 }
 
 /// Sample x of new triangle t within the bound of the input surface, measured from the input
-/// vertices `near` (newTrianglesNearInput).
-bool CollapseCheck::sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound, const NearVertices& near) const {
+/// vertices `near` (newTrianglesNearInput). `settleFineMm` is at most the fine bound of every
+/// vertex of `near` and of the corners: a vertex within it decides as the nearest one would.
+bool CollapseCheck::sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound, const NearVertices& near,
+                                    double settleFineMm) const {
     const BlockMesh& M = mesh_;
     const InputSurface& in = *M.state.input;
     // p: the nearest input vertex (on the fine interface); c: the nearest corner, whose input
@@ -372,8 +378,10 @@ bool CollapseCheck::sampleNearInput(const Vec3& x, std::int32_t t, const Bounds&
     std::size_t p = 0;
     std::int32_t c = -1;
     double d2 = std::numeric_limits<double>::infinity(), c2 = d2;
+    const double settle2 = settleFineMm * settleFineMm;
     for (std::size_t i = 0; i < near.pos.size(); ++i) {
         const double e = (near.pos[i] - x).squaredNorm();
+        if (e <= settle2) return true;
         if (e < d2) {
             d2 = e;
             p = i;

@@ -70,7 +70,8 @@ private:
             pos.push_back(points[std::size_t(q)]);
         }
     };
-    bool sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound, const NearVertices& near) const;
+    bool sampleNearInput(const Vec3& x, std::int32_t t, const Bounds& cornerBound, const NearVertices& near,
+                         double settleFineMm) const;
     void collectCollapseVertices(const CollapsePlan& plan);
     bool intersectionFree();
     void collectLocalTriangles();
