@@ -57,7 +57,6 @@ Progress& terminalProgress(const GlobalOptions& global) {
 
 int main(int argc, char** argv) {
     using namespace jawmesh;
-    reexecWithHugePageMalloc(argv);  // before any allocation worth the name
     CLI::App app{"jawmesh: dense jaw segmentation surfaces -> conformal labeled tetrahedral FE models"};
     app.set_version_flag("--version", std::string("jawmesh ") + JAWMESH_VERSION);
     app.require_subcommand(1);
@@ -82,6 +81,13 @@ int main(int argc, char** argv) {
     addRegisteredCommands(app, global);
 
     app.preparse_callback([](std::size_t) { openvdb::initialize(); });
+    // Arguments parsed and checked, no command run yet: huge pages for malloc where the kernel
+    // waits to be asked (io/HugePageMalloc.h). A second start costs about 70 ms (the dynamic
+    // linking again), so usage errors, --help and the completion script go without.
+    app.parse_complete_callback([&app, argv] {
+        const std::vector<CLI::App*> used = app.get_subcommands();
+        if (!used.empty() && used.front()->get_name() != "completion") reexecWithHugePageMalloc(argv);
+    });
     try {
         TerminalProgress::installInterruptHandler();
         app.parse(argc, argv);
