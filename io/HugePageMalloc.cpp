@@ -1,8 +1,8 @@
 // Implements io/HugePageMalloc.h. Why: on the shared mandible under a kernel in "madvise" mode
 // (this project's 2-core machines), a whole run spent 22 s of system time in 2.7 M page faults,
 // and its user time suffered TLB misses over gigabytes of 4 KB pages; with glibc's hugetlb
-// tunable the faults were 0.78 M and the run 110 -> 82 s, the same mesh, the same peak
-// (docs/BENCHMARKS.md, session 41).
+// tunable the faults were 0.78 M and the run 112 -> 90 s (medians of alternating pairs), the same
+// mesh, the same peak (docs/BENCHMARKS.md, session 41).
 #include "io/HugePageMalloc.h"
 
 #include <cstdlib>

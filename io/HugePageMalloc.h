@@ -22,8 +22,8 @@ std::optional<std::string> tunablesForHugePages(const std::string& mode, const c
 
 /// Re-executes this binary (/proc/self/exe, the same arguments and process id) with the tunables
 /// of tunablesForHugePages when they differ from this process's; returns when they do not, or
-/// when the re-execution fails (the run goes on as before). Call first thing in main: glibc reads
-/// its tunables only at start-up.
+/// when the re-execution fails (the run goes on as before). Call before a command does its work
+/// (main does, once the arguments are checked): glibc reads its tunables only at start-up.
 void reexecWithHugePageMalloc(char** argv);
 
 /// Whether this process's malloc was told to advise huge pages (GLIBC_TUNABLES holds
