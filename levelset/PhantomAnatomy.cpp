@@ -414,9 +414,16 @@ double toothField(const ToothSpec& t, const Vec3& p) {
     return f;
 }
 
-double boneField(const JawAnatomy& an, const Vec3& p) {
-    double s = 0, n = 0;
-    an.arch.closest(p, s, n);
+ArchPosition archPosition(const JawAnatomy& an, const Vec3& p) {
+    ArchPosition at;
+    an.arch.closest(p, at.s, at.n);
+    return at;
+}
+
+double boneField(const JawAnatomy& an, const Vec3& p) { return boneField(an, p, archPosition(an, p)); }
+
+double boneField(const JawAnatomy& an, const Vec3& p, const ArchPosition& at) {
+    const double s = at.s, n = at.n;
     const double step = an.tableS[1] - an.tableS[0];
     const double fi = std::clamp((s - an.tableS.front()) / step, 0.0, static_cast<double>(an.tableS.size() - 1) - 1e-9);
     const std::size_t i = static_cast<std::size_t>(fi);

@@ -111,6 +111,18 @@ double toothField(const ToothSpec& tooth, const Vec3& p);
 /// the tooth roots. Template-frame point, mm. Cost O(teeth) with bounding-box culling.
 double boneField(const JawAnatomy& anatomy, const Vec3& p);
 
+/// Where (p.x, p.y) lies along the arch (Arch::closest): all boneField reads of the arch, the
+/// same for every point of a vertical line.
+struct ArchPosition {
+    double s = 0;  ///< arc length, mm
+    double n = 0;  ///< signed horizontal offset along labial(s), mm
+};
+ArchPosition archPosition(const JawAnatomy& anatomy, const Vec3& p);
+
+/// boneField at p given archPosition(anatomy, p) (a column of voxels shares it: the label volume
+/// asked the arch once per voxel, a tenth of a phantom label map's time).
+double boneField(const JawAnatomy& anatomy, const Vec3& p, const ArchPosition& at);
+
 /// Template-frame point of a world point (and back: the map is its own inverse).
 inline Vec3 toTemplate(const JawAnatomy& anatomy, const Vec3& p) {
     return anatomy.mirror ? Vec3(p.x(), p.y(), -p.z()) : p;

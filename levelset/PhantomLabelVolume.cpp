@@ -9,13 +9,14 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <optional>
 
 namespace jawmesh {
 namespace {
 
 /// The label at a template-frame point: the first tooth whose field is negative, else bone, PDL
-/// or outside.
-std::int32_t labelAt(const phantom::JawAnatomy& an, const Vec3& p, double pdlMm) {
+/// or outside. `arch`: the arch position of p's vertical line, found here when first needed.
+std::int32_t labelAt(const phantom::JawAnatomy& an, const Vec3& p, double pdlMm, std::optional<phantom::ArchPosition>& arch) {
     const bool inBody = an.boneBox.min.x() <= p.x() && p.x() <= an.boneBox.max.x() && an.boneBox.min.y() <= p.y() &&
                         p.y() <= an.boneBox.max.y() && an.boneBox.min.z() <= p.z() && p.z() <= an.boneBox.max.z();
     int nearTooth = 0;
@@ -25,7 +26,9 @@ std::int32_t labelAt(const phantom::JawAnatomy& an, const Vec3& p, double pdlMm)
         if (f < 0) return toothLabel(t.unn);
         if (pdlMm > 0 && f < pdlMm && nearTooth == 0) nearTooth = t.unn;
     }
-    if (!inBody || phantom::boneField(an, p) >= 0) return kOutsideLabel;
+    if (!inBody) return kOutsideLabel;
+    if (!arch) arch = phantom::archPosition(an, p);
+    if (phantom::boneField(an, p, *arch) >= 0) return kOutsideLabel;
     if (nearTooth) return pdlLabel(nearTooth);
     return an.jaw == Jaw::Mandible ? kMandibleBoneLabel : kMaxillaBoneLabel;
 }
@@ -50,12 +53,17 @@ LabelVolume phantomLabelVolume(const PhantomOptions& phantom, const PhantomLabel
     v.originMm = ((box.min / o.voxelMm).array().floor() - 1.0).matrix() * o.voxelMm;
     v.values.assign(v.voxels(), 0);
     const std::size_t nx = static_cast<std::size_t>(v.size[0]), ny = static_cast<std::size_t>(v.size[1]);
-    tbb::parallel_for(0, v.size[2], [&](int k) {
-        for (std::size_t j = 0; j < ny; ++j)
-            for (std::size_t i = 0; i < nx; ++i) {
+    // by vertical lines (the volume's axes are the template's, which differs from the world in z
+    // only): the arch is asked once per line
+    tbb::parallel_for(std::size_t(0), ny, [&](std::size_t j) {
+        for (std::size_t i = 0; i < nx; ++i) {
+            std::optional<phantom::ArchPosition> arch;
+            for (int k = 0; k < v.size[2]; ++k) {
                 const Vec3 world = v.worldOf(static_cast<double>(i), static_cast<double>(j), k);
-                v.values[(static_cast<std::size_t>(k) * ny + j) * nx + i] = labelAt(an, phantom::toTemplate(an, world), o.pdlThicknessMm);
+                v.values[(static_cast<std::size_t>(k) * ny + j) * nx + i] =
+                    labelAt(an, phantom::toTemplate(an, world), o.pdlThicknessMm, arch);
             }
+        }
     });
     v.segments = valueSegments(v);
     nameSegmentsByLabel(v.segments, an.jaw);
