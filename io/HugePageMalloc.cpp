@@ -27,9 +27,9 @@ std::string hugetlbValue(const char* tunables) {
 }  // namespace
 
 std::string activeHugePageMode(const std::string& fileText) {
-    const std::size_t open = fileText.find('['), close = fileText.find(']', open);
-    if (open == std::string::npos || close == std::string::npos) return {};
-    return fileText.substr(open + 1, close - open - 1);
+    const std::size_t opening = fileText.find('['), closing = fileText.find(']', opening);
+    if (opening == std::string::npos || closing == std::string::npos) return {};
+    return fileText.substr(opening + 1, closing - opening - 1);
 }
 
 std::optional<std::string> tunablesForHugePages(const std::string& mode, const char* current) {
