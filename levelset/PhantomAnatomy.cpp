@@ -222,7 +222,7 @@ Vec3 Arch::labial(double s) const {
     return Vec3(d.y(), -d.x(), 0);
 }
 
-void Arch::closest(const Vec3& p, double& s, double& n) const {
+ArchPosition Arch::closest(const Vec3& p) const {
     const Eigen::Vector2d q(p.x(), p.y());
     const int i = std::clamp(static_cast<int>(std::floor((q.x() - gridMin_.x()) / cell_)), 0, nx_ - 1);
     const int j = std::clamp(static_cast<int>(std::floor((q.y() - gridMin_.y()) / cell_)), 0, ny_ - 1);
@@ -238,8 +238,10 @@ void Arch::closest(const Vec3& p, double& s, double& n) const {
         if (dist < best) { best = dist; bestK = k; bestT = t; }
     }
     const Eigen::Vector2d d = pts_[bestK + 1] - pts_[bestK];
-    s = -halfLength_ + (bestK + bestT) * step_;
-    n = (q - pts_[bestK] - d * bestT).dot(Eigen::Vector2d(d.y(), -d.x())) / d.norm();
+    ArchPosition at;
+    at.s = -halfLength_ + (bestK + bestT) * step_;
+    at.n = (q - pts_[bestK] - d * bestT).dot(Eigen::Vector2d(d.y(), -d.x())) / d.norm();
+    return at;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -414,13 +416,7 @@ double toothField(const ToothSpec& t, const Vec3& p) {
     return f;
 }
 
-ArchPosition archPosition(const JawAnatomy& an, const Vec3& p) {
-    ArchPosition at;
-    an.arch.closest(p, at.s, at.n);
-    return at;
-}
-
-double boneField(const JawAnatomy& an, const Vec3& p) { return boneField(an, p, archPosition(an, p)); }
+double boneField(const JawAnatomy& an, const Vec3& p) { return boneField(an, p, an.arch.closest(p)); }
 
 double boneField(const JawAnatomy& an, const Vec3& p, const ArchPosition& at) {
     const double s = at.s, n = at.n;

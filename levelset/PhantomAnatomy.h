@@ -57,6 +57,12 @@ struct ToothSpec {
     BBox box;                                ///< conservative template-frame bounds of the tooth, mm
 };
 
+/// Where (p.x, p.y) lies along the arch: the same for every point of a vertical line.
+struct ArchPosition {
+    double s = 0;  ///< arc length, mm
+    double n = 0;  ///< signed horizontal offset along labial(s), mm
+};
+
 /// The dental arch: a symmetric planar curve z = const sampled by arc length, with a lookup grid
 /// for closest-point queries.
 class Arch {
@@ -71,7 +77,7 @@ public:
     Vec3 labial(double s) const;
     /// Closest point of the curve to (p.x, p.y): its arc length s and the signed horizontal offset
     /// n along labial(s). Exact near the curve (within ~10 mm), approximate beyond. O(1).
-    void closest(const Vec3& p, double& s, double& n) const;
+    ArchPosition closest(const Vec3& p) const;
     double halfLength() const { return halfLength_; }
 
 private:
@@ -111,16 +117,8 @@ double toothField(const ToothSpec& tooth, const Vec3& p);
 /// the tooth roots. Template-frame point, mm. Cost O(teeth) with bounding-box culling.
 double boneField(const JawAnatomy& anatomy, const Vec3& p);
 
-/// Where (p.x, p.y) lies along the arch (Arch::closest): all boneField reads of the arch, the
-/// same for every point of a vertical line.
-struct ArchPosition {
-    double s = 0;  ///< arc length, mm
-    double n = 0;  ///< signed horizontal offset along labial(s), mm
-};
-ArchPosition archPosition(const JawAnatomy& anatomy, const Vec3& p);
-
-/// boneField at p given archPosition(anatomy, p) (a column of voxels shares it: the label volume
-/// asked the arch once per voxel, a tenth of a phantom label map's time).
+/// boneField at p given anatomy.arch.closest(p) (a vertical line of voxels shares it: the label
+/// volume asked the arch once per voxel, a tenth of a phantom label map's time).
 double boneField(const JawAnatomy& anatomy, const Vec3& p, const ArchPosition& at);
 
 /// Template-frame point of a world point (and back: the map is its own inverse).

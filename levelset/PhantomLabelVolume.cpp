@@ -27,7 +27,7 @@ std::int32_t labelAt(const phantom::JawAnatomy& an, const Vec3& p, double pdlMm,
         if (pdlMm > 0 && f < pdlMm && nearTooth == 0) nearTooth = t.unn;
     }
     if (!inBody) return kOutsideLabel;
-    if (!arch) arch = phantom::archPosition(an, p);
+    if (!arch) arch = an.arch.closest(p);
     if (phantom::boneField(an, p, *arch) >= 0) return kOutsideLabel;
     if (nearTooth) return pdlLabel(nearTooth);
     return an.jaw == Jaw::Mandible ? kMandibleBoneLabel : kMaxillaBoneLabel;
