@@ -21,9 +21,8 @@ bool isNifti(const std::string& path) { return endsWithIgnoringCase(path, ".nii"
 bool isNrrd(const std::string& path) { return endsWithIgnoringCase(path, ".nrrd") || endsWithIgnoringCase(path, ".nhdr"); }
 
 template <typename T>
-void appendAs(const void* data, std::size_t count, std::vector<std::int32_t>& out) {
+void convertAs(const void* data, std::size_t count, std::int32_t* out) {
     const T* in = static_cast<const T*>(data);
-    out.resize(count);
     for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<std::int32_t>(in[i]);
 }
 
@@ -64,23 +63,29 @@ void checkGeometry(const LabelVolume& v) {
 
 }  // namespace
 
-bool convertValues(const void* data, VoxelType type, std::size_t count, std::vector<std::int32_t>& out) {
+bool convertValues(const void* data, VoxelType type, std::size_t count, std::int32_t* out) {
     switch (type) {
-        case VoxelType::Int8: appendAs<std::int8_t>(data, count, out); return true;
-        case VoxelType::UInt8: appendAs<std::uint8_t>(data, count, out); return true;
-        case VoxelType::Int16: appendAs<std::int16_t>(data, count, out); return true;
-        case VoxelType::UInt16: appendAs<std::uint16_t>(data, count, out); return true;
-        case VoxelType::Int32: appendAs<std::int32_t>(data, count, out); return true;
+        case VoxelType::Int8: convertAs<std::int8_t>(data, count, out); return true;
+        case VoxelType::UInt8: convertAs<std::uint8_t>(data, count, out); return true;
+        case VoxelType::Int16: convertAs<std::int16_t>(data, count, out); return true;
+        case VoxelType::UInt16: convertAs<std::uint16_t>(data, count, out); return true;
+        case VoxelType::Int32: convertAs<std::int32_t>(data, count, out); return true;
         case VoxelType::UInt32: {
             const auto* in = static_cast<const std::uint32_t*>(data);
             for (std::size_t i = 0; i < count; ++i)
                 if (in[i] > static_cast<std::uint32_t>(std::numeric_limits<std::int32_t>::max())) return false;
-            appendAs<std::uint32_t>(data, count, out);
+            convertAs<std::uint32_t>(data, count, out);
             return true;
         }
         case VoxelType::Other: return false;
     }
     return false;
+}
+
+bool convertValues(const void* data, VoxelType type, std::size_t count, std::vector<std::int32_t>& out) {
+    if (type == VoxelType::Other) return false;
+    out.resize(count);
+    return convertValues(data, type, count, out.data());
 }
 
 bool fitsUint16(const std::vector<std::int32_t>& values) {

@@ -4,10 +4,13 @@
 
 #include <nifti2_io.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 namespace jawmesh {
 namespace {
@@ -38,6 +41,30 @@ void readGeometry(const nifti_image& nim, LabelVolume& v) {
             if (!(v.directionsMm(a, a) > 0)) v.directionsMm(a, a) = 1.0;
 }
 
+/// The voxel values, read and converted a slab at a time: the library's own loading would hold the
+/// file's values and their int32 copy at once (3.6 GB for a 0.1 mm jaw of 600 M voxels as uint16).
+void readValues(znzFile file, nifti_image& nim, LabelVolume& v) {
+    const VoxelType type = niftiVoxelType(nim.datatype);
+    if (type == VoxelType::Other)
+        throw Error(v.path, std::string("values of type ") + nifti_datatype_string(nim.datatype) +
+                                ": labels must be integers of 8-32 bits");
+    if (znzseek(file, static_cast<long>(nim.iname_offset), SEEK_SET) < 0)
+        throw Error(v.path, "cannot read as NIfTI (its data is truncated)");
+    constexpr std::size_t kSlabVoxels = std::size_t(1) << 24;
+    const std::size_t bytesPerVoxel = static_cast<std::size_t>(nim.nbyper);
+    std::vector<unsigned char> slab(std::min(kSlabVoxels, v.voxels()) * bytesPerVoxel);
+    v.values.resize(v.voxels());
+    for (std::size_t first = 0; first < v.voxels(); first += kSlabVoxels) {
+        const std::size_t count = std::min(kSlabVoxels, v.voxels() - first);
+        const int64_t bytes = static_cast<int64_t>(count * bytesPerVoxel);
+        if (nifti_read_buffer(file, slab.data(), bytes, &nim) != bytes)  // swaps the bytes as the header says
+            throw Error(v.path, "cannot read as NIfTI (its data is truncated)");
+        if (!convertValues(slab.data(), type, count, v.values.data() + first))
+            throw Error(v.path, std::string("values of type ") + nifti_datatype_string(nim.datatype) +
+                                    ": labels must be integers of 8-32 bits (a uint32 value above 2^31-1)");
+    }
+}
+
 }  // namespace
 
 LabelVolume readNiftiVolume(const std::string& path) {
@@ -52,8 +79,13 @@ LabelVolume readNiftiVolume(const std::string& path) {
         if (declared > 1100.0 * static_cast<double>(std::filesystem::file_size(path)) + 65536.0)
             throw Error(path, "the header declares " + std::to_string(declared / 1e6) + " MB of data, more than its file can hold");
     }
-    NiftiPtr nim(nifti_image_read(path.c_str(), 1), nifti_image_free);
-    if (!nim || !nim->data) throw Error(path, "cannot read as NIfTI (not a NIfTI-1/2 file, or its data is truncated)");
+    nifti_image* header = nullptr;
+    znzFile file = nifti_image_open(path.c_str(), const_cast<char*>("rb"), &header);
+    NiftiPtr nim(header, nifti_image_free);
+    const std::unique_ptr<znzFile, void (*)(znzFile*)> closer(&file, [](znzFile* f) {
+        if (!znz_isnull(*f)) znzclose(*f);
+    });
+    if (!nim || znz_isnull(file)) throw Error(path, "cannot read as NIfTI (not a NIfTI-1/2 file)");
     LabelVolume v;
     v.path = path;
     const int64_t ndim = nim->dim[0];
@@ -67,9 +99,7 @@ LabelVolume readNiftiVolume(const std::string& path) {
     if (nim->scl_slope != 0 && (nim->scl_slope != 1 || nim->scl_inter != 0))
         throw Error(path, "values are scaled (scl_slope/scl_inter): labels must be stored as they are");
     readGeometry(*nim, v);
-    if (!convertValues(nim->data, niftiVoxelType(nim->datatype), v.voxels(), v.values))
-        throw Error(path, std::string("values of type ") + nifti_datatype_string(nim->datatype) +
-                              ": labels must be integers of 8-32 bits");
+    readValues(file, *nim, v);
     return v;
 }
 

@@ -116,8 +116,10 @@ SurfaceMesh labelSurface(const LabelVolume& v, const std::vector<std::size_t>& s
     return maskSurface(v, *segmentMasks(v, {segments}).front(), smoothingSteps, true);
 }
 
-JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment& roles, Jaw jaw, Progress& progress) {
-    const bool keepPdl = roles.hasPdl && roles.pdl == PdlLabels::Keep;
+namespace {
+
+/// The segments of each surface to make: the bone first (key 0), then each tooth by UNN.
+std::vector<std::pair<int, std::vector<std::size_t>>> roleGroups(const LabelAssignment& roles, bool keepPdl) {
     std::vector<std::size_t> bone;
     std::map<int, std::vector<std::size_t>> teeth;
     for (std::size_t s = 0; s < roles.roles.size(); ++s) {
@@ -127,9 +129,18 @@ JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment&
     }
     std::vector<std::pair<int, std::vector<std::size_t>>> jobs{{0, bone}};
     jobs.insert(jobs.end(), teeth.begin(), teeth.end());
+    return jobs;
+}
+
+std::vector<openvdb::MaskGrid::Ptr> groupMasks(const LabelVolume& v, const std::vector<std::pair<int, std::vector<std::size_t>>>& jobs) {
     std::vector<std::vector<std::size_t>> groups;
     for (const auto& job : jobs) groups.push_back(job.second);
-    const std::vector<openvdb::MaskGrid::Ptr> masks = segmentMasks(v, groups);
+    return segmentMasks(v, groups);
+}
+
+/// The surfaces of the masks of `jobs`; `v` gives the voxel-to-world map and the file's name only.
+JawSurfaces surfacesOfMasks(const LabelVolume& v, const std::vector<std::pair<int, std::vector<std::size_t>>>& jobs,
+                            const std::vector<openvdb::MaskGrid::Ptr>& masks, Jaw jaw, bool keepPdl, Progress& progress) {
     std::vector<SurfaceMesh> surfaces(jobs.size());
     ProgressStage stage(progress, jawName(jaw) + " label surfaces");
     parallelForFirstErrorInOrder(jobs.size(), progress, [&](std::size_t j) {
@@ -145,6 +156,22 @@ JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment&
     out.bone = std::move(surfaces[0]);
     for (std::size_t j = 1; j < jobs.size(); ++j) out.teeth[jobs[j].first] = std::move(surfaces[j]);
     return out;
+}
+
+bool keepsPdl(const LabelAssignment& roles) { return roles.hasPdl && roles.pdl == PdlLabels::Keep; }
+
+}  // namespace
+
+JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment& roles, Jaw jaw, Progress& progress) {
+    const auto jobs = roleGroups(roles, keepsPdl(roles));
+    return surfacesOfMasks(v, jobs, groupMasks(v, jobs), jaw, keepsPdl(roles), progress);
+}
+
+JawSurfaces surfacesFromLabelVolume(LabelVolume&& v, const LabelAssignment& roles, Jaw jaw, Progress& progress) {
+    const auto jobs = roleGroups(roles, keepsPdl(roles));
+    const std::vector<openvdb::MaskGrid::Ptr> masks = groupMasks(v, jobs);
+    std::vector<std::int32_t>().swap(v.values);  // the masks hold what is needed: 2.4 GB of a 0.1 mm jaw
+    return surfacesOfMasks(v, jobs, masks, jaw, keepsPdl(roles), progress);
 }
 
 }  // namespace jawmesh
