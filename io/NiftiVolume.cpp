@@ -93,6 +93,9 @@ LabelVolume readNiftiVolume(const std::string& path) {
         if (nim->dim[d] > 1) throw Error(path, "a " + std::to_string(ndim) + "D volume (label maps are 3D)");
     if (ndim < 3 || nim->nz < 2) throw Error(path, "a 2D image (label maps are 3D)");
     v.size = {static_cast<int>(nim->nx), static_cast<int>(nim->ny), static_cast<int>(nim->nz)};
+    // The data is read for nx * ny * nz voxels: it must be the count the size check above bounded.
+    if (std::min({nim->nx, nim->ny, nim->nz}) < 1 || static_cast<int64_t>(v.voxels()) != nim->nvox)
+        throw Error(path, "the header's dimensions disagree with its voxel count");
     if (nim->xyz_units == NIFTI_UNITS_METER) throw Error(path, "lengths in metres (multiply by 1000): write the volume in mm");
     if (nim->xyz_units != 0 && nim->xyz_units != NIFTI_UNITS_MM)
         throw Error(path, "lengths are not millimetres (NIfTI xyz_units " + std::to_string(nim->xyz_units) + ")");
