@@ -9,8 +9,8 @@
 
 #include <array>
 #include <cmath>
-#include <utility>
 #include <sstream>
+#include <utility>
 
 namespace jawmesh {
 
