@@ -101,9 +101,9 @@ case "${1:-}" in
     rm -rf build/maxilla-run
     [ -d ../shared/data/p26-maxilla-teeth ] &&
       ./build/cli/jawmesh run ../shared/data/p26-maxilla-teeth -o build/maxilla-run --jaw maxilla --write-levelsets
-    JAWMESH_MANDIBLE_RUN="$PWD/build/mandible-run/mandible" JAWMESH_LABEL_MAP_TEST=1 JAWMESH_DIRTY_TEETH_TEST=1 \
+    JAWMESH_MANDIBLE_RUN="$PWD/build/mandible-run/mandible" JAWMESH_LABEL_MAP_TEST=1 \
       JAWMESH_MANDIBLE_EDIT_RUN="$PWD/build/mandible-edit-run/mandible" JAWMESH_MAXILLA_RUN="$PWD/build/maxilla-run/maxilla" \
-      ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun|SlowInterfaces|SlowLabelMap|SlowEditMandible|MultiShell' \
+      ctest --test-dir build -L slow -R 'SlowRunMandible|MandibleRun|SlowInterfaces|SlowLabelMap|SlowEditMandible' \
       --output-on-failure
     ;;
   slurm-test)

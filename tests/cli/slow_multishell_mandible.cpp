@@ -7,8 +7,8 @@
 //  - Staircase: each tooth as its voxels of 0.2 mm, unsmoothed (tests/support/VoxelStaircase.h),
 //    judged against that staircase, as the user gave it.
 // The multi-shell run is part of the slow set (CI): a whole-mandible run takes about two minutes
-// since issue #22 (117 s for the test at 4fe6e62). The staircase test is disabled (below) and, when
-// asked for, runs with JAWMESH_DIRTY_TEETH_TEST=1 (`bash quickstart.sh mandible-test` sets it).
+// since issue #22 (117 s for the test at 4fe6e62). The staircase test is disabled (below); it runs
+// with JAWMESH_DIRTY_TEETH_TEST=1 and --gtest_also_run_disabled_tests (build/tests/slow_cli).
 #include "io/MeshIO.h"
 #include "levelset/Csg.h"
 #include "levelset/LevelSetSurface.h"
