@@ -7,7 +7,6 @@
 #include "io/ToothAxes.h"
 #include "levelset/LabelVolumeSurfaces.h"
 
-#include <array>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -23,14 +22,13 @@ JawSurfaces loadJawInput(const JawCase& jc, const LoadOptions& options, Progress
     }();
     if (options.scale > 0) volume.directionsMm *= options.scale, volume.originMm *= options.scale;
     const LabelAssignment roles = assignLabelRoles(volume, jc.jaw, jc.labelsJsonPath);
-    const std::array<int, 3> size = volume.size;
-    const Eigen::Matrix3d directions = volume.directionsMm;
+    std::ostringstream note;
+    note << "read from the label volume " << jc.labelVolumePath << ": " << volume.size[0] << " x " << volume.size[1] << " x "
+         << volume.size[2] << " voxels of " << volume.directionsMm.col(0).norm() << " x " << volume.directionsMm.col(1).norm()
+         << " x " << volume.directionsMm.col(2).norm() << " mm, ";
     JawSurfaces out = surfacesFromLabelVolume(std::move(volume), roles, jc.jaw, progress);
     if (!jc.axesPath.empty()) out.axes = readToothAxes(jc.axesPath);
-    std::ostringstream note;
-    note << "read from the label volume " << jc.labelVolumePath << ": " << size[0] << " x " << size[1] << " x " << size[2]
-         << " voxels of " << directions.col(0).norm() << " x " << directions.col(1).norm() << " x " << directions.col(2).norm()
-         << " mm, " << out.teeth.size() << " teeth";
+    note << out.teeth.size() << " teeth";
     out.notes.push_back(note.str());
     return out;
 }

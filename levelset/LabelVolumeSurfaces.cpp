@@ -116,10 +116,8 @@ SurfaceMesh labelSurface(const LabelVolume& v, const std::vector<std::size_t>& s
     return maskSurface(v, *segmentMasks(v, {segments}).front(), smoothingSteps, true);
 }
 
-namespace {
-
-/// The segments of each surface to make: the bone first (key 0), then each tooth by UNN.
-std::vector<std::pair<int, std::vector<std::size_t>>> roleGroups(const LabelAssignment& roles, bool keepPdl) {
+JawSurfaces surfacesFromLabelVolume(LabelVolume&& v, const LabelAssignment& roles, Jaw jaw, Progress& progress) {
+    const bool keepPdl = roles.hasPdl && roles.pdl == PdlLabels::Keep;
     std::vector<std::size_t> bone;
     std::map<int, std::vector<std::size_t>> teeth;
     for (std::size_t s = 0; s < roles.roles.size(); ++s) {
@@ -129,18 +127,10 @@ std::vector<std::pair<int, std::vector<std::size_t>>> roleGroups(const LabelAssi
     }
     std::vector<std::pair<int, std::vector<std::size_t>>> jobs{{0, bone}};
     jobs.insert(jobs.end(), teeth.begin(), teeth.end());
-    return jobs;
-}
-
-std::vector<openvdb::MaskGrid::Ptr> groupMasks(const LabelVolume& v, const std::vector<std::pair<int, std::vector<std::size_t>>>& jobs) {
     std::vector<std::vector<std::size_t>> groups;
     for (const auto& job : jobs) groups.push_back(job.second);
-    return segmentMasks(v, groups);
-}
-
-/// The surfaces of the masks of `jobs`; `v` gives the voxel-to-world map and the file's name only.
-JawSurfaces surfacesOfMasks(const LabelVolume& v, const std::vector<std::pair<int, std::vector<std::size_t>>>& jobs,
-                            const std::vector<openvdb::MaskGrid::Ptr>& masks, Jaw jaw, bool keepPdl, Progress& progress) {
+    const std::vector<openvdb::MaskGrid::Ptr> masks = segmentMasks(v, groups);
+    std::vector<std::int32_t>().swap(v.values);  // the masks hold what is needed: 2.4 GB of a 0.1 mm jaw
     std::vector<SurfaceMesh> surfaces(jobs.size());
     ProgressStage stage(progress, jawName(jaw) + " label surfaces");
     parallelForFirstErrorInOrder(jobs.size(), progress, [&](std::size_t j) {
@@ -156,22 +146,6 @@ JawSurfaces surfacesOfMasks(const LabelVolume& v, const std::vector<std::pair<in
     out.bone = std::move(surfaces[0]);
     for (std::size_t j = 1; j < jobs.size(); ++j) out.teeth[jobs[j].first] = std::move(surfaces[j]);
     return out;
-}
-
-bool keepsPdl(const LabelAssignment& roles) { return roles.hasPdl && roles.pdl == PdlLabels::Keep; }
-
-}  // namespace
-
-JawSurfaces surfacesFromLabelVolume(const LabelVolume& v, const LabelAssignment& roles, Jaw jaw, Progress& progress) {
-    const auto jobs = roleGroups(roles, keepsPdl(roles));
-    return surfacesOfMasks(v, jobs, groupMasks(v, jobs), jaw, keepsPdl(roles), progress);
-}
-
-JawSurfaces surfacesFromLabelVolume(LabelVolume&& v, const LabelAssignment& roles, Jaw jaw, Progress& progress) {
-    const auto jobs = roleGroups(roles, keepsPdl(roles));
-    const std::vector<openvdb::MaskGrid::Ptr> masks = groupMasks(v, jobs);
-    std::vector<std::int32_t>().swap(v.values);  // the masks hold what is needed: 2.4 GB of a 0.1 mm jaw
-    return surfacesOfMasks(v, jobs, masks, jaw, keepsPdl(roles), progress);
 }
 
 }  // namespace jawmesh

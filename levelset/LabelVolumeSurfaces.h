@@ -34,11 +34,8 @@ SurfaceMesh labelSurface(const LabelVolume& volume, const std::vector<std::size_
 /// Bone and tooth surfaces of a jaw's label volume under `roles`: PDL segments go to the bone
 /// when roles.pdl is Generate, and are left out of it when kept (JawSurfaces::pdlKept).
 /// Teeth are processed in parallel (TBB), each deterministically. Throws Error naming the volume.
-JawSurfaces surfacesFromLabelVolume(const LabelVolume& volume, const LabelAssignment& roles, Jaw jaw,
-                                    Progress& progress = noProgress());
-/// The same, releasing the volume's values once its segments' masks are made (the smoothing
-/// needs only the masks): the peak of a 0.1 mm jaw's 600 M voxels is then theirs or the
-/// smoothing's, not both. `volume` keeps its size, map and segments.
+/// The volume's values are released once its segments' masks are made (the smoothing needs only
+/// the masks: a 0.1 mm jaw's 600 M voxels are not held beside it).
 JawSurfaces surfacesFromLabelVolume(LabelVolume&& volume, const LabelAssignment& roles, Jaw jaw,
                                     Progress& progress = noProgress());
 

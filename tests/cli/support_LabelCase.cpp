@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 namespace jawmesh::test {
 
@@ -46,8 +47,9 @@ std::map<Label, double> labelledVolumesMm3(const std::string& labelJawDir) {
 void writeLabelSurfaces(const std::string& labelJawDir, const std::string& outJawDir) {
     namespace fs = std::filesystem;
     const Jaw jaw = jawFromName(fs::path(labelJawDir).filename().string());
-    const LabelVolume v = readLabelVolume(labelVolumeIn(labelJawDir));
-    const JawSurfaces s = surfacesFromLabelVolume(v, assignLabelRoles(v, jaw, labelsJsonIn(labelJawDir)), jaw);
+    LabelVolume v = readLabelVolume(labelVolumeIn(labelJawDir));
+    const LabelAssignment roles = assignLabelRoles(v, jaw, labelsJsonIn(labelJawDir));
+    const JawSurfaces s = surfacesFromLabelVolume(std::move(v), roles, jaw);
     writeSurface(s.bone, (fs::path(outJawDir) / "bone" / (jawName(jaw) + ".stl")).string());
     for (const auto& [unn, tooth] : s.teeth)
         writeSurface(tooth, (fs::path(outJawDir) / "teeth" / ("tooth_" + std::to_string(unn) + ".stl")).string());
