@@ -149,6 +149,12 @@ ToothAxes frameAndCrownCentre(const SurfaceMesh& mesh, const Shape& s, const Vec
 /// UNN of molars in both jaws (1-3, 14-19, 30-32).
 bool isMolar(int unn) { return unn <= 3 || (unn >= 14 && unn <= 19) || unn >= 30; }
 
+/// Radius of the labial face patch that turns tooth unn's long axis (0: none, the anatomical axis).
+double labialFaceRadiusOf(int unn, Jaw jaw, const AxesFromShapeOptions& o) {
+    if (!isMolar(unn)) return o.labialFaceRadiusMm;
+    return jaw == Jaw::Mandible ? o.mandibularMolarLabialFaceRadiusMm : o.molarLabialFaceRadiusMm;
+}
+
 /// UNN runs along the arch through the midline (1-16 in the maxilla, 17-32 in the mandible): on the
 /// first half of each jaw increasing UNN is mesial, so distal is against it.
 bool unnIncreasesMesially(int unn, Jaw jaw) { return unn < (jaw == Jaw::Maxilla ? 8.5 : 24.5); }
@@ -275,12 +281,13 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
         auto frameFor = [&](const Vec3& occlusal) {
             return frameForLongAxis(mesh, s, unn, jaw, along, archCentre, occlusal, o.crownFraction, choice);
         };
-        const double faceRadiusMm = isMolar(unn) ? o.molarLabialFaceRadiusMm : o.labialFaceRadiusMm;
+        const double faceRadiusMm = labialFaceRadiusOf(unn, jaw, o);
         const Vec3 anatomical = sense * s.longAxis;
         ToothAxes a = frameFor(anatomical);
         // Clinical crown axis: the anatomical axis in the plane of the labial face. The labial face
         // is found from the crown centre, which moves with the axis: two passes settle it.
-        for (int pass = 0; pass < 2 && faceRadiusMm > 0; ++pass) {
+        bool fromFace = faceRadiusMm > 0;
+        for (int pass = 0; pass < 2 && fromFace; ++pass) {
             Vec3 normal;
             // A face tilted more than 30 degrees from the anatomical axis is not a side of the
             // tooth (an incisal edge or an occlusal table the ray happened to leave through).
@@ -288,14 +295,16 @@ std::map<int, ToothAxes> toothAxesFromShape(const std::map<int, SurfaceMesh>& te
                 std::abs(normal.dot(anatomical)) > 0.5) {
                 if (notes) notes->push_back("tooth " + std::to_string(unn) + ": no labial crown face found, long axis = anatomical axis");
                 a = frameFor(anatomical);
+                fromFace = false;
                 break;
             }
             a = frameFor((anatomical - anatomical.dot(normal) * normal).normalized());
         }
         axes[unn] = a;
         if (notes)
-            notes->push_back("tooth " + std::to_string(unn) + ": mesial-distal axis from the " + choice.cue + " (" +
-                             std::to_string(static_cast<int>(std::lround(choice.offArchDeg))) + " deg from the arch tangent)");
+            notes->push_back("tooth " + std::to_string(unn) + ": long axis from the " +
+                             (fromFace ? "labial face" : "whole tooth") + ", mesial-distal axis from the " + choice.cue +
+                             " (" + std::to_string(static_cast<int>(std::lround(choice.offArchDeg))) + " deg from the arch tangent)");
     }
     // A long axis its neighbours contradict is not used: it takes the neighbours' mean (the frame
     // made again around it), and the tooth is reported.
