@@ -66,6 +66,8 @@ int main(int argc, char** argv) {
             std::printf("| %d | %.1f | %.1f | %.1f | %.2f | %s |\n", unn, longDeg, labialDeg, angleDeg(c.mesialDistal, g.mesialDistal),
                         (c.crownCentre - g.crownCentre).norm(), noteOf(notes, unn).c_str());
         }
+        for (const auto& [unn, c] : computed)
+            if (!given.count(unn)) std::printf("| %d | no axes given | | | | %s |\n", unn, noteOf(notes, unn).c_str());
         std::printf("| worst | %.1f | %.1f | | | %d of %zu teeth within 10 deg long and 15 labial |\n", worstLong, worstLabial, within,
                     given.size());
         return 0;

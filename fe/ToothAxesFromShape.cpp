@@ -146,9 +146,6 @@ ToothAxes frameAndCrownCentre(const SurfaceMesh& mesh, const Shape& s, const Vec
     return a;
 }
 
-/// UNN of molars in both jaws (1-3, 14-19, 30-32).
-bool isMolar(int unn) { return unn <= 3 || (unn >= 14 && unn <= 19) || unn >= 30; }
-
 /// Radius of the labial face patch that turns tooth unn's long axis (0: none, the anatomical axis).
 double labialFaceRadiusOf(int unn, Jaw jaw, const AxesFromShapeOptions& o) {
     if (!isMolar(unn)) return o.labialFaceRadiusMm;

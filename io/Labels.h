@@ -20,6 +20,8 @@ constexpr Label kMaxillaBoneLabel = 2;
 
 /// True for a Universal Numbering System tooth number (1..32).
 constexpr bool isValidUnn(int unn) { return unn >= 1 && unn <= 32; }
+/// Molars by UNN, both jaws: 1-3 and 14-16 (maxilla), 17-19 and 30-32 (mandible).
+constexpr bool isMolar(int unn) { return unn <= 3 || (unn >= 14 && unn <= 19) || unn >= 30; }
 
 Label boneLabel(Jaw jaw);
 Label toothLabel(int unn);   ///< throws Error for an invalid UNN
