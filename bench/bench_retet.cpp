@@ -6,7 +6,7 @@
 // Usage: bench_retet <mesh.msh | surface.poly> [key=value ...], keys: q (radius-edge), dihedral, tgdihedral (TetGen's own), bone, tooth, pdl,
 // max (edge mm), O (optimisation level), repair (attempts), improve (0/1), check (0: no intersection check first), Y (0: TetGen may split interface triangles),
 // refine (rounds of local refinement, tet/RefineComplex.h), holes (1: only fill the surface's holes and list them),
-// trials (the sliver improver's lookahead trials in all), push, outerpush (mm an interface node inside the mesh / on its outer boundary may be pushed off a thin spot), lost (1: repair the holes, run TetGen once with the first
+// trials (the sliver improver's lookahead trials in all), push, outerpush, finalpush (mm an interface node inside the mesh / on its outer boundary / inside the mesh after every rung may be pushed off a thin spot), lost (1: repair the holes, run TetGen once with the first
 // rung's switches and list the input triangles that are no tet face), wedges (1: the region wedges before and after the hole repair).
 // BENCH_WRITE=<file.msh> writes the mesh.
 #include "filters/FillSurfaceHoles.h"
@@ -138,6 +138,7 @@ int main(int argc, char** argv) {
         else if (k == "wedges") wedgesOnly = v != 0;
         else if (k == "push") o.slivers.interfacePushMm = v;
         else if (k == "outerpush") o.slivers.outerPushMm = v;
+        else if (k == "finalpush") o.finalInterfacePushMm = v;
         else { std::fprintf(stderr, "unknown key %s\n", k.c_str()); return 2; }
     }
     const std::string path = argv[1];
@@ -184,6 +185,10 @@ int main(int argc, char** argv) {
     std::printf("kept run's improver: %zu under the target before, %zu after, %zu lookahead trials%s, %zu pushes (%zu outer), %.1f s\n", s.slivers.badBefore,
                 s.slivers.badAfter, s.slivers.lookaheadTrials, s.slivers.lookaheadBudgetSpent ? " (budget spent)" : "",
                 s.slivers.interfacePushes, s.slivers.outerPushes, s.slivers.seconds);
+    if (s.finalPushRan)
+        std::printf("final push (%.3f mm): %zu under the target before, %zu after, %zu pushes, %.1f s, %s\n", o.finalInterfacePushMm,
+                    s.finalPush.badBefore, s.finalPush.badAfter, s.finalPush.interfacePushes, s.finalPush.seconds,
+                    s.finalPushKept ? "kept" : "not kept");
     const jawmesh::HoleFillStats& h = s.holeRepair;
     if (!h.filled.empty())
         std::printf("hole repair: %zu holes closed (%zu by a centroid fan), %zu triangles added, %zu removed (lids), largest %.2f mm\n",

@@ -229,6 +229,24 @@ void refineRounds(Ladder& l, const InterfaceComplex& plc, ProgressStage& stage, 
     }
 }
 
+/// The last resort after the ladder (TetOptions::finalInterfacePushMm): the kept mesh improved
+/// once more with longer interface pushes, kept when better.
+void finalPush(Ladder& l) {
+    const TetOptions& o = l.options;
+    if (!o.improveSlivers || o.finalInterfacePushMm <= 0 || !l.haveBest || l.metTheTarget()) return;
+    l.progress.checkCancelled();
+    TetMesh mesh = l.best;
+    SliverOptions longer = o.slivers;
+    longer.interfacePushMm = o.finalInterfacePushMm;
+    l.stats.finalPushRan = true;
+    improveSlivers(mesh, longer, &l.stats.finalPush, l.progress);
+    const QualityStats q = measureQuality(mesh, o.slivers.targetMinDihedralDeg);
+    if (!isBetter(l, q, false)) return;
+    l.best = std::move(mesh);
+    l.bestQuality = q;
+    l.stats.finalPushKept = true;
+}
+
 }  // namespace
 
 double tetVolumeForEdge(double edgeMm) { return edgeMm * edgeMm * edgeMm / (6.0 * std::sqrt(2.0)); }
@@ -274,6 +292,7 @@ TetMesh tetrahedralize(const InterfaceComplex& input, const TetOptions& options,
     climbLadder(ladder, plc, 0, cheapRungs, stage, stageSteps);
     refineRounds(ladder, plc, stage, stageSteps);
     climbLadder(ladder, plc, cheapRungs, runs, stage, stageSteps);
+    finalPush(ladder);
     st.seconds = secondsSince(start);
     st.nodes = ladder.best.nodes.size();
     st.tets = ladder.best.tets.size();
@@ -294,7 +313,9 @@ nlohmann::json toJson(const TetStats& stats) {
             {"refined_edges", stats.refinedEdges},
             {"child_peak_memory_bytes", stats.childPeakMemoryBytes},
             {"seconds", stats.seconds},
-            {"sliver_improvement", toJson(stats.slivers)}};
+            {"sliver_improvement", toJson(stats.slivers)},
+            {"final_push", stats.finalPushRan ? nlohmann::json{{"kept", stats.finalPushKept}, {"improvement", toJson(stats.finalPush)}}
+                                              : nlohmann::json(nullptr)}};
 }
 
 }  // namespace jawmesh

@@ -57,6 +57,13 @@ struct TetOptions {
     /// surface does not move, and the simplifier checks the centroids of a split's halves, but
     /// not those of a second split's quarters).
     int refineRounds = 0;
+    /// When tets under the target are left after every rung and round, the improver runs once more
+    /// on the kept mesh with its interface pushes reaching this far, mm (0: never), and that mesh
+    /// is kept when it leaves fewer such tets, or as many with a larger smallest angle. Only then:
+    /// a mesh that meets the target never sees it (session 42: the same push everywhere moved the
+    /// shared maxilla to another rung, 861 k tets against 565 k). A node already pushed may move
+    /// by this much again. For the bent lips of a voxel staircase's faces (docs/BENCHMARKS.md).
+    double finalInterfacePushMm = 0.01;
 };
 
 /// What a run did, for run.json and the report.
@@ -76,6 +83,11 @@ struct TetStats {
     std::vector<std::string> failedAttempts; ///< repair runs that failed (switches: reason); the kept run stands
     int refineRounds = 0;               ///< refinement rounds kept (TetOptions::refineRounds)
     std::size_t refinedEdges = 0;       ///< surface edges split by them
+    /// What the last improvement with the longer pushes did (TetOptions::finalInterfacePushMm),
+    /// when it ran; kept tells whether its mesh was kept.
+    bool finalPushRan = false;
+    bool finalPushKept = false;
+    SliverStats finalPush;
     /// Peak resident memory of the child processes TetGen ran in (one group of regions,
     /// tet/TetgenGroups.h; the refinement rounds), bytes: not part of this process's peak, but
     /// alongside it while they run.
