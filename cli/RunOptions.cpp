@@ -71,6 +71,7 @@ const NumberKey kNumberKeys[] = {
     {"tet_bone_edge_mm", [](RunOptions& o) -> double& { return o.tet.boneEdgeMm; }, 0, 1000},
     {"tet_interface_push_mm", [](RunOptions& o) -> double& { return o.tet.slivers.interfacePushMm; }, 0, 0.05},
     {"tet_outer_push_mm", [](RunOptions& o) -> double& { return o.tet.slivers.outerPushMm; }, 0, 0.05},
+    {"tet_final_push_mm", [](RunOptions& o) -> double& { return o.tet.finalInterfacePushMm; }, 0, 0.05},
 };
 
 /// A whole-number key from lo to hi, when present: 2.5 levels is a mistake, not 2.

@@ -233,7 +233,8 @@ void refineRounds(Ladder& l, const InterfaceComplex& plc, ProgressStage& stage, 
 /// once more with longer interface pushes, kept when better.
 void finalPush(Ladder& l) {
     const TetOptions& o = l.options;
-    if (!o.improveSlivers || o.finalInterfacePushMm <= 0 || !l.haveBest || l.metTheTarget()) return;
+    // A caller that allows no interface pushes wants the surface where it is.
+    if (!o.improveSlivers || o.finalInterfacePushMm <= 0 || o.slivers.interfacePushMm <= 0 || !l.haveBest || l.metTheTarget()) return;
     l.progress.checkCancelled();
     TetMesh mesh = l.best;
     SliverOptions longer = o.slivers;

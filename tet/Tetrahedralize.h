@@ -58,8 +58,9 @@ struct TetOptions {
     /// not those of a second split's quarters).
     int refineRounds = 0;
     /// When tets under the target are left after every rung and round, the improver runs once more
-    /// on the kept mesh with its interface pushes reaching this far, mm (0: never), and that mesh
-    /// is kept when it leaves fewer such tets, or as many with a larger smallest angle. Only then:
+    /// on the kept mesh with its interface pushes reaching this far, mm (0, or no interface pushes
+    /// at all in `slivers`: never; config key tet_final_push_mm), and that mesh is kept when it
+    /// leaves fewer such tets, or as many with a larger smallest angle. Only then:
     /// a mesh that meets the target never sees it (session 42: the same push everywhere moved the
     /// shared maxilla to another rung, 861 k tets against 565 k). A node already pushed may move
     /// by this much again. For the bent lips of a voxel staircase's faces (docs/BENCHMARKS.md).
