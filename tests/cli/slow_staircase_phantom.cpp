@@ -1,9 +1,11 @@
-// The two cases of the soak bench (bench/soak.sh seeds=12 teeth=1,2,3, session 42) that kept a tet
-// under 10 degrees: the phantom mandible with 2 teeth, seeds 1 and 9, every tooth as unsmoothed
-// voxels of 0.2 mm (bench_soak's "staircase" variant), at bench_soak's triangle scale. After every
-// rung and refinement round one tet was left (9.69 and 3.73 degrees: a PDL tet on a face of the
-// staircase bent by about 4 degrees); the improver's final run with longer interface pushes
-// (TetOptions::finalInterfacePushMm) mends both, and run.json says it was kept.
+// The worse of the two cases of the soak bench (bench/soak.sh seeds=12 teeth=1,2,3, session 42)
+// that kept a tet under 10 degrees: the phantom mandible with 2 teeth, seed 9, every tooth as
+// unsmoothed voxels of 0.2 mm (bench_soak's "staircase" variant), at bench_soak's triangle scale.
+// After every rung and refinement round one tet was left at 3.73 degrees (a PDL tet on a face of
+// the staircase bent by about 4 degrees); the improver's final run with longer interface pushes
+// (TetOptions::finalInterfacePushMm) mends it, and run.json says it was kept. (Seed 1's 9.69 is
+// mended by the same stage, measured by the soak: docs/BENCHMARKS.md session 43; one case keeps
+// the slow set's time down.)
 #include "levelset/Phantom.h"
 #include "support/TestData.h"
 #include "support/VoxelStaircase.h"
@@ -38,8 +40,8 @@ nlohmann::json runStaircasePhantom(std::uint32_t seed) {
     return in ? nlohmann::json::parse(in) : nlohmann::json();
 }
 
-TEST(SlowStaircasePhantom, SoakCasesThatKeptASliverMeetTenDegrees) {
-    for (std::uint32_t seed : {1u, 9u}) {
+TEST(SlowStaircasePhantom, SoakCaseThatKeptASliverMeetsTenDegrees) {
+    for (std::uint32_t seed : {9u}) {
         SCOPED_TRACE("seed " + std::to_string(seed));
         const nlohmann::json run = runStaircasePhantom(seed);
         ASSERT_TRUE(run.contains("quality")) << run.dump();
