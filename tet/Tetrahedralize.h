@@ -99,7 +99,8 @@ struct TetStats {
 };
 
 /// As run.json's "tetgen" records it: switches, attempts, failed_attempts, refine_rounds,
-/// refined_edges, child_peak_memory_bytes, seconds, hole_repair and sliver_improvement.
+/// refined_edges, child_peak_memory_bytes, seconds, hole_repair, sliver_improvement and final_push
+/// (null when it did not run, else kept and its improvement).
 nlohmann::json toJson(const TetStats& stats);
 
 /// TetGen volume bound (mm^3) for a target edge length (mm): the volume of a regular tet.
