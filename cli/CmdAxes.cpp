@@ -66,7 +66,7 @@ void addAxesCommand(CLI::App& app, GlobalOptions& global) {
     auto* cmd = app.add_subcommand(
         "axes",
         "Tooth axes of a case (crown centre; x mesial->distal, y labial, z occlusal): from its teeth_axes JSON when "
-        "present, else computed from the tooth shapes (clinical crown axis: the volume's principal axis in the plane of the labial face; oriented by the arch and the bone).");
+        "present, else computed from the tooth shapes (clinical crown axis: the volume's principal axis in the plane of the labial face, mandibular molars the principal axis itself; oriented by the arch and the bone).");
     cmd->add_option("case", opt->caseDir, "Case folder (Open-Full-Jaw layout)")->required()->check(CLI::ExistingDirectory);
     cmd->add_option("--jaw", opt->jaw, "Only this jaw")->check(CLI::IsMember({"mandible", "maxilla"}));
     cmd->add_flag("--json", opt->json, "Print the axes as JSON in the teeth_axes shape");
