@@ -5,13 +5,13 @@
 // The teeth folder holds tooth_<UNN>.<stl|obj|ply|off>; only teeth the JSON names are compared,
 // all of them are used (they shape the arch).
 #include "fe/ToothAxesFromShape.h"
+#include "io/Case.h"
 #include "io/MeshIO.h"
 #include "io/ToothAxes.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <exception>
-#include <filesystem>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -19,14 +19,10 @@
 
 namespace {
 
-/// Every tooth_<UNN>.<ext> of a folder, by UNN.
-std::map<int, jawmesh::SurfaceMesh> readTeeth(const std::string& folder) {
+/// Every tooth_<UNN>.<ext> of a folder, by UNN, named as in the case layout.
+std::map<int, jawmesh::SurfaceMesh> readTeeth(const std::string& folder, jawmesh::Jaw jaw) {
     std::map<int, jawmesh::SurfaceMesh> teeth;
-    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
-        const std::string stem = entry.path().stem().string();
-        if (stem.rfind("tooth_", 0) != 0 || !jawmesh::isSurfaceExtension(entry.path().extension().string().substr(1))) continue;
-        teeth[std::stoi(stem.substr(6))] = jawmesh::readSurface(entry.path().string());
-    }
+    for (const auto& [unn, path] : jawmesh::toothFilesIn(folder, jaw)) teeth[unn] = jawmesh::readSurface(path);
     return teeth;
 }
 
@@ -48,9 +44,9 @@ int main(int argc, char** argv) {
     }
     try {
         using namespace jawmesh;
-        const std::map<int, SurfaceMesh> teeth = readTeeth(argv[1]);
-        const std::map<int, ToothAxes> given = readToothAxes(argv[2]);
         const Jaw jaw = std::string(argv[3]) == "maxilla" ? Jaw::Maxilla : Jaw::Mandible;
+        const std::map<int, SurfaceMesh> teeth = readTeeth(argv[1], jaw);
+        const std::map<int, ToothAxes> given = readToothAxes(argv[2]);
         const SurfaceMesh bone = argc > 4 ? readSurface(argv[4]) : SurfaceMesh();
         std::vector<std::string> notes;
         const std::map<int, ToothAxes> computed = toothAxesFromShape(teeth, jaw, bone, {}, &notes);

@@ -185,9 +185,9 @@ int main(int argc, char** argv) {
     std::printf("kept run's improver: %zu under the target before, %zu after, %zu lookahead trials%s, %zu pushes (%zu outer), %.1f s\n", s.slivers.badBefore,
                 s.slivers.badAfter, s.slivers.lookaheadTrials, s.slivers.lookaheadBudgetSpent ? " (budget spent)" : "",
                 s.slivers.interfacePushes, s.slivers.outerPushes, s.slivers.seconds);
-    if (s.finalPushRan)
+    if (s.finalPush)
         std::printf("final push (%.3f mm): %zu under the target before, %zu after, %zu pushes, %.1f s, %s\n", o.finalInterfacePushMm,
-                    s.finalPush.badBefore, s.finalPush.badAfter, s.finalPush.interfacePushes, s.finalPush.seconds,
+                    s.finalPush->badBefore, s.finalPush->badAfter, s.finalPush->interfacePushes, s.finalPush->seconds,
                     s.finalPushKept ? "kept" : "not kept");
     const jawmesh::HoleFillStats& h = s.holeRepair;
     if (!h.filled.empty())

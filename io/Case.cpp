@@ -56,6 +56,27 @@ std::string labelVolumeIn(const std::string& jawDir) {
     return found.empty() ? "" : found[0];
 }
 
+std::map<int, std::string> toothFilesIn(const std::string& teethDir, Jaw jaw) {
+    std::map<int, std::string> paths;
+    for (const fs::path& p : sortedEntries(teethDir)) {
+        if (!isFile(p) || !isSurfaceExtension(surfaceExtension(p.string())) || isAllTeethObj(p)) continue;
+        const std::string stem = lower(stemOf(p));
+        const std::string digits = stem.size() > 6 && stem.compare(0, 6, "tooth_") == 0 ? stem.substr(6) : "";
+        if (digits.empty() || digits.size() > 3 || digits.find_first_not_of("0123456789") != std::string::npos)
+            throw Error(p.string(), "cannot read a tooth number from this file name: expected tooth_<UNN>." +
+                                        surfaceExtension(p.string()) + " (UNN 1..32) or all_teeth.obj");
+        const int unn = std::stoi(digits);
+        if (!isValidUnn(unn)) throw Error(p.string(), "tooth number " + std::to_string(unn) + " is outside 1..32");
+        if (jawOfTooth(unn) != jaw)
+            throw Error(p.string(), "tooth " + std::to_string(unn) + " belongs to the " + jawName(jawOfTooth(unn)) + " (" +
+                                        (jaw == Jaw::Mandible ? "1..16" : "17..32") + "), not the " + jawName(jaw) + " (" +
+                                        (jaw == Jaw::Mandible ? "17..32" : "1..16") + ")");
+        const auto [it, inserted] = paths.emplace(unn, p.string());
+        if (!inserted) throw Error(p.string(), "tooth " + std::to_string(unn) + " is given twice (also " + it->second + "); keep one");
+    }
+    return paths;
+}
+
 namespace {
 
 /// A jaw given as a label volume: it may hold labels.json and an axes file, no surfaces.
@@ -98,27 +119,9 @@ JawCase discoverJaw(const fs::path& jawDir, Jaw jaw) {
     std::vector<std::string> allTeeth;
     if (isAllTeethObj(jawDir / "all_teeth.obj")) allTeeth.push_back((jawDir / "all_teeth.obj").string());
     if (isDir(teethDir)) {
-        for (const fs::path& p : sortedEntries(teethDir)) {
-            if (!isFile(p) || !isSurfaceExtension(surfaceExtension(p.string()))) continue;
-            if (isAllTeethObj(p)) {
-                allTeeth.push_back(p.string());
-                continue;
-            }
-            const std::string stem = lower(stemOf(p));
-            const std::string digits = stem.size() > 6 && stem.compare(0, 6, "tooth_") == 0 ? stem.substr(6) : "";
-            if (digits.empty() || digits.size() > 3 || digits.find_first_not_of("0123456789") != std::string::npos)
-                throw Error(p.string(), "cannot read a tooth number from this file name: expected tooth_<UNN>." +
-                                            surfaceExtension(p.string()) + " (UNN 1..32) or all_teeth.obj");
-            const int unn = std::stoi(digits);
-            if (!isValidUnn(unn)) throw Error(p.string(), "tooth number " + std::to_string(unn) + " is outside 1..32");
-            if (jawOfTooth(unn) != jaw)
-                throw Error(p.string(), "tooth " + std::to_string(unn) + " belongs to the " + jawName(jawOfTooth(unn)) +
-                                            " (" + (jaw == Jaw::Mandible ? "1..16" : "17..32") + "), not the " + name +
-                                            " (" + (jaw == Jaw::Mandible ? "17..32" : "1..16") + ")");
-            const auto [it, inserted] = jc.toothPaths.emplace(unn, p.string());
-            if (!inserted)
-                throw Error(p.string(), "tooth " + std::to_string(unn) + " is given twice (also " + it->second + "); keep one");
-        }
+        for (const fs::path& p : sortedEntries(teethDir))
+            if (isAllTeethObj(p)) allTeeth.push_back(p.string());
+        jc.toothPaths = toothFilesIn(teethDir.string(), jaw);
     }
     if (allTeeth.size() > 1) throw Error(allTeeth[1], "all_teeth.obj is given twice (also " + allTeeth[0] + "); keep one");
     if (!allTeeth.empty() && !jc.toothPaths.empty())

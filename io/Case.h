@@ -51,6 +51,11 @@ struct CaseInfo {
 /// tooth_<UNN> files and an all_teeth.obj. Cost: a few directory listings.
 CaseInfo discoverCase(const std::string& caseDir);
 
+/// The tooth_<UNN>.<ext> surfaces of a teeth folder by UNN, as discoverCase names them (an
+/// all_teeth.obj is skipped: its caller's). Throws Error as discoverCase does for a name without a
+/// tooth number, a UNN outside 1..32 or of the other jaw, and a UNN given twice.
+std::map<int, std::string> toothFilesIn(const std::string& teethDir, Jaw jaw);
+
 /// The label volume of a jaw folder (<case>/input/<jaw>/labels.nrrd, .nhdr, .seg.nrrd, .nii or
 /// .nii.gz), empty when there is none. Throws Error when there are several.
 std::string labelVolumeIn(const std::string& jawDir);

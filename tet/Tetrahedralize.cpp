@@ -239,9 +239,9 @@ void finalPush(Ladder& l) {
     TetMesh mesh = l.best;
     SliverOptions longer = o.slivers;
     longer.interfacePushMm = o.finalInterfacePushMm;
-    l.stats.finalPushRan = true;
+    l.stats.finalPush.emplace();
     try {
-        improveSlivers(mesh, longer, &l.stats.finalPush, l.progress);
+        improveSlivers(mesh, longer, &*l.stats.finalPush, l.progress);
     } catch (const Error& e) {
         // It exists only to improve angles: the mesh already made stands.
         l.stats.failedAttempts.push_back("final push: " + std::string(e.what()));
@@ -321,8 +321,8 @@ nlohmann::json toJson(const TetStats& stats) {
             {"child_peak_memory_bytes", stats.childPeakMemoryBytes},
             {"seconds", stats.seconds},
             {"sliver_improvement", toJson(stats.slivers)},
-            {"final_push", stats.finalPushRan ? nlohmann::json{{"kept", stats.finalPushKept}, {"improvement", toJson(stats.finalPush)}}
-                                              : nlohmann::json(nullptr)}};
+            {"final_push", stats.finalPush ? nlohmann::json{{"kept", stats.finalPushKept}, {"improvement", toJson(*stats.finalPush)}}
+                                           : nlohmann::json(nullptr)}};
 }
 
 }  // namespace jawmesh

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -85,10 +86,9 @@ struct TetStats {
     int refineRounds = 0;               ///< refinement rounds kept (TetOptions::refineRounds)
     std::size_t refinedEdges = 0;       ///< surface edges split by them
     /// What the last improvement with the longer pushes did (TetOptions::finalInterfacePushMm),
-    /// when it ran; kept tells whether its mesh was kept.
-    bool finalPushRan = false;
+    /// when it ran; finalPushKept tells whether its mesh was kept.
+    std::optional<SliverStats> finalPush;
     bool finalPushKept = false;
-    SliverStats finalPush;
     /// Peak resident memory of the child processes TetGen ran in (one group of regions,
     /// tet/TetgenGroups.h; the refinement rounds), bytes: not part of this process's peak, but
     /// alongside it while they run.
